@@ -1,0 +1,1 @@
+//! C ABI for Glide 3 (in progress)

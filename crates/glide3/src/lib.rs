@@ -1,0 +1,1 @@
+//! glide3 (in progress)

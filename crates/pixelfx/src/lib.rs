@@ -1,0 +1,1 @@
+//! pixelfx (in progress)

@@ -1,0 +1,1 @@
+//! sst1-dither (in progress)

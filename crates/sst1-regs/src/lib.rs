@@ -1,0 +1,28 @@
+//! The SST-1 (Voodoo Graphics) register map.
+//!
+//! Source: SST-1 Graphics Engine specification rev 1.61, sections 4 and 5
+//! (`shared/reference/sst-1-spec-rev1.61.md`).
+//!
+//! * [`addr`]: the byte offset of every register in the (non-remapped) register map.
+//! * [`color`]: the 8-bit-per-channel colour value passed between pipeline stages.
+//! * [`RegisterBus`]: what a driver sees of the board: 32-bit reads and writes in the
+//!   16 MiB PCI aperture plus PCI configuration writes.
+
+pub mod addr;
+pub mod color;
+
+pub use color::Rgba;
+
+/// The 16 MiB PCI memory aperture of an SST-1 board, as a driver (or a trace) sees it.
+///
+/// Everything that drives the emulated chip goes through this trait: the trace
+/// replayer, the Glide 3 front-end and the hardware-behaviour tests. A recorder can
+/// therefore wrap any implementation and log what was written.
+pub trait RegisterBus {
+    /// One 32-bit write at byte offset `addr` of the aperture (spec section 4).
+    fn write32(&mut self, addr: u32, value: u32);
+    /// One 32-bit read at byte offset `addr` of the aperture.
+    fn read32(&mut self, addr: u32) -> u32;
+    /// A write to PCI configuration space (spec section 6); `offset` is the byte offset.
+    fn pci_write(&mut self, offset: u32, value: u32);
+}

@@ -1,0 +1,1 @@
+//! texelfx (in progress)

@@ -1,0 +1,1 @@
+//! Port layer for hardware-behaviour tests (in progress)
