@@ -1,8 +1,26 @@
 //! The SST-1 board: one Pixelfx (FBI), one to three Texelfx (TMU), and the PCI
 //! aperture that feeds them (spec sections 4-6).
+//!
+//! ```text
+//!   PCI aperture (16 MiB)
+//!   0x000000-0x3fffff  registers  --chip select-->  FBI, TMU0, TMU1, TMU2
+//!   0x400000-0x7fffff  LFB        -------------->   FBI
+//!   0x800000-0xffffff  texture    --bits 22:21-->   TMU0..2
+//! ```
+//! Commands run to completion inside the write that starts them: the emulated board is
+//! always idle when the host looks.
+
+mod bus;
+mod chain;
+mod diagnostics;
 
 use serde::{Deserialize, Serialize};
-use sst1_regs::RegisterBus;
+
+pub use diagnostics::{Diagnostic, Diagnostics};
+pub use pixelfx::{PixelProfile, Stats};
+pub use texelfx::{TexelProfile, Tmu};
+
+use pixelfx::Fbi;
 
 /// What is on the board: memory sizes and TMU count (the trace's `config` lines).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -21,6 +39,22 @@ impl Default for BoardConfig {
     }
 }
 
+impl BoardConfig {
+    /// The same configuration with every value forced into the range the hardware offers
+    /// (2 or 4 MiB frame buffer, 1-3 TMUs, 1/2/4 MiB each).
+    pub fn sanitized(self) -> Self {
+        Self {
+            fbi_mb: if self.fbi_mb <= 2 { 2 } else { 4 },
+            tmus: self.tmus.clamp(1, 3),
+            tmu_mb: match self.tmu_mb {
+                0 | 1 => 1,
+                2 | 3 => 2,
+                _ => 4,
+            },
+        }
+    }
+}
+
 /// Which buffer of the frame buffer to read out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum BufferKind {
@@ -32,36 +66,81 @@ pub enum BufferKind {
     Aux,
 }
 
+/// The accuracy profile of the whole board: every disputed behaviour in one place.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct AccuracyProfile {
+    /// Pixelfx switches.
+    pub pixel: PixelProfile,
+    /// Texelfx switches.
+    pub texel: TexelProfile,
+}
+
 /// The emulated board.
 pub struct Board {
     config: BoardConfig,
+    fbi: Fbi,
+    tmus: Vec<Tmu>,
+    /// PCI configuration register `initEnable` (0x40).
+    init_enable: u32,
+    diagnostics: Diagnostics,
 }
 
 impl Board {
+    /// A board in its power-on state. Out-of-range configurations are sanitized.
     pub fn new(config: BoardConfig) -> Self {
-        Self { config }
+        let config = config.sanitized();
+        let tmu_bytes = (config.tmu_mb as usize) << 20;
+        Self {
+            config,
+            fbi: Fbi::new(config.fbi_mb),
+            tmus: (0..config.tmus as u8).map(|i| Tmu::new(i, tmu_bytes)).collect(),
+            init_enable: 0,
+            diagnostics: Diagnostics::default(),
+        }
     }
 
+    /// The board configuration.
     pub fn config(&self) -> BoardConfig {
         self.config
     }
 
+    /// Choose the disputed behaviours.
+    pub fn set_profile(&mut self, profile: AccuracyProfile) {
+        self.fbi.set_profile(profile.pixel);
+        for t in &mut self.tmus {
+            t.set_profile(profile.texel);
+        }
+    }
+
     /// Width and height of the video mode set by `videoDimensions`.
     pub fn display_size(&self) -> (u32, u32) {
-        (640, 480)
+        self.fbi.display_size()
+    }
+
+    /// The statistics counters and command counts.
+    pub fn stats(&self) -> Stats {
+        self.fbi.stats
+    }
+
+    /// What the board met that it does not model or that a driver should not do.
+    pub fn diagnostics(&self) -> &Diagnostics {
+        &self.diagnostics
+    }
+
+    /// The FBI, for inspection.
+    pub fn fbi(&self) -> &Fbi {
+        &self.fbi
     }
 
     /// The buffer as `width * height` raw 16-bit values, row 0 = first row in memory.
-    pub fn dump_buffer(&self, _which: BufferKind) -> Vec<u16> {
+    pub fn dump_buffer(&self, which: BufferKind) -> Vec<u16> {
         let (w, h) = self.display_size();
-        vec![0; (w * h) as usize]
+        let fb = &self.fbi.fb;
+        let base = match which {
+            BufferKind::Front => fb.rgb_base(fb.front),
+            BufferKind::Back => fb.rgb_base(fb.back),
+            BufferKind::Aux => fb.aux_base(),
+        };
+        fb.dump(base, w, h)
     }
-}
-
-impl RegisterBus for Board {
-    fn write32(&mut self, _addr: u32, _value: u32) {}
-    fn read32(&mut self, _addr: u32) -> u32 {
-        0
-    }
-    fn pci_write(&mut self, _offset: u32, _value: u32) {}
 }

@@ -1,1 +1,28 @@
-//! pixelfx (in progress)
+//! Pixelfx: the SST-1 frame-buffer interface chip (FBI).
+//!
+//! One module per pipeline stage; [`pipeline`] calls them in hardware order and is the
+//! only module that knows that order. [`fbi::Fbi`] owns the register file, the frame
+//! buffer and the counters; the board crate decodes the PCI aperture and drives it.
+
+pub mod alpha_test;
+pub mod blend;
+pub mod color_path;
+pub mod depth;
+pub mod fastfill;
+pub mod fb;
+pub mod fbi;
+pub mod fog;
+pub mod iter;
+pub mod lfb;
+pub mod params;
+pub mod pipeline;
+pub mod profile;
+pub mod raster;
+pub mod setup;
+pub mod stats;
+pub mod stipple;
+
+pub use fbi::{Command, Fbi};
+pub use profile::PixelProfile;
+pub use raster::{NoTexture, TexelSource};
+pub use stats::{Kill, Stats};

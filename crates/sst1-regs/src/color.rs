@@ -16,7 +16,12 @@ impl Rgba {
     /// From a packed `0xAARRGGBB` word, as in `color0`, `color1`, `fogColor` (alpha = bits 31:24).
     #[inline]
     pub const fn from_argb(v: u32) -> Self {
-        Self { r: (v >> 16) as u8, g: (v >> 8) as u8, b: v as u8, a: (v >> 24) as u8 }
+        Self {
+            r: (v >> 16) as u8,
+            g: (v >> 8) as u8,
+            b: v as u8,
+            a: (v >> 24) as u8,
+        }
     }
 
     /// Packed `0xAARRGGBB`.
@@ -33,7 +38,15 @@ mod tests {
     #[test]
     fn argb_round_trip() {
         let c = Rgba::from_argb(0x80ff4010);
-        assert_eq!(c, Rgba { r: 0xff, g: 0x40, b: 0x10, a: 0x80 });
+        assert_eq!(
+            c,
+            Rgba {
+                r: 0xff,
+                g: 0x40,
+                b: 0x10,
+                a: 0x80
+            }
+        );
         assert_eq!(c.to_argb(), 0x80ff4010);
     }
 }

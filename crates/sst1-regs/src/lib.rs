@@ -5,13 +5,20 @@
 //!
 //! * [`addr`]: the byte offset of every register in the (non-remapped) register map.
 //! * [`color`]: the 8-bit-per-channel colour value passed between pipeline stages.
+//! * [`map`]: the register table in spec order ([`map::REGISTERS`]), name lookup,
+//!   the triangle-register remap and [`map::decode`] for dumps and logs.
+//! * [`types`] (re-exported here): one typed, self-describing view per mode register
+//!   (`FbzMode`, `TextureMode`, ...).
 //! * [`RegisterBus`]: what a driver sees of the board: 32-bit reads and writes in the
 //!   16 MiB PCI aperture plus PCI configuration writes.
 
 pub mod addr;
 pub mod color;
+pub mod map;
+pub mod types;
 
 pub use color::Rgba;
+pub use types::*;
 
 /// The 16 MiB PCI memory aperture of an SST-1 board, as a driver (or a trace) sees it.
 ///

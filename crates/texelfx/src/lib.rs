@@ -1,1 +1,427 @@
-//! texelfx (in progress)
+//! Texelfx: one SST-1 texture mapping unit (TREX / TMU).
+//!
+//! Spec sections 5.50-5.56 (`textureMode`, `tLOD`, `tDetail`, `texBaseAddr*`, `trexInit*`,
+//! `nccTable*`), 8 (texture memory layout and downloads) and 9.4 (subpixel correction).
+//!
+//! For each pixel a TMU iterates S/W, T/W and 1/W, divides for perspective, computes the
+//! LOD, fetches and filters texels from its own memory, then merges the result with the
+//! upstream TMU's output in its texture combine unit ([`sst1_chain`]); TMU 0's output goes
+//! to the FBI. Stages, in hardware order:
+//!
+//! 1. iterators ([`Tmu::texel`]): `start + dx * d/dx + dy * d/dy`, S/T 14.18 and W 2.30,
+//!    kept as 64-bit values with 32 fraction bits as the references do;
+//! 2. coordinates, LOD, fetch and filter (modules `sample`, `lod`);
+//! 3. texel decode (module `format`, NCC in [`sst1_ncc`]);
+//! 4. texture combine ([`sst1_chain`]).
+//!
+//! Texture memory is laid out as module `layout` describes and written by module
+//! `download`. No decoded-texel cache is kept, so every write to memory,
+//! the NCC tables, the palette or a texture register takes effect on the next texel.
+//!
+//! Where the reference emulators disagree, [`TexelProfile`] selects the behaviour.
+
+mod download;
+mod format;
+mod layout;
+mod lod;
+mod sample;
+
+use layout::Layout;
+use sst1_chain::{detail_factor, Factors, TextureCombine};
+use sst1_ncc::{NccRegs, NccWrite, Rgb8};
+use sst1_regs::{addr, Rgba, TextureMode};
+
+/// Signed fixed point with 14 integer and 18 fraction bits (`startS`, `dSdX`, ...).
+pub type Fx14_18 = i32;
+/// Signed fixed point with 2 integer and 30 fraction bits (`startW`, `dWdX`, ...).
+pub type Fx2_30 = i32;
+/// Signed fixed point with 32 fraction bits: the internal S, T and W iterator format.
+type Fx32 = i64;
+
+/// How the LOD is computed from the gradients and W.
+///
+/// MAME and DOSBox (the default) take `log2` of the larger of `dS/dx² + dT/dx²` and
+/// `dS/dy² + dT/dy²`, halve it, and subtract `log2(W)` per pixel. 86Box reduces the
+/// gradients to 18 fraction bits, scales the log by a further 1/2 and uses
+/// `log2(2^16 / W) - 19` per pixel; it picks other LODs at steep angles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum LodCalc {
+    /// MAME and DOSBox Staging.
+    #[default]
+    Mame,
+    /// 86Box.
+    Box86,
+}
+
+/// The LOD dither of `textureMode` bit 4.
+///
+/// MAME and DOSBox (the default) add the 4x4 ordered-dither matrix value / 16 (0 to 15/16,
+/// average 15/32). The spec says the average is 3/8. 86Box ignores the bit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum LodDither {
+    /// MAME and DOSBox Staging: `matrix[y & 3][x & 3] << 4` added to the 8.8 LOD.
+    #[default]
+    Matrix4x4,
+    /// 86Box: no LOD dither.
+    Off,
+}
+
+/// Precision of the bilinear weights.
+///
+/// All three references use 4 bits per fraction on the SST-1 (MAME, DOSBox: mask 0xf0;
+/// 86Box: 16ths); the Voodoo 2 uses 8.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum BilinearPrecision {
+    /// 4-bit S and T fractions (SST-1).
+    #[default]
+    Bits4,
+    /// 8-bit fractions (Voodoo 2), in MAME's SSE2 arithmetic.
+    Bits8,
+}
+
+/// What RGB an A8 (format 2) texel gives.
+///
+/// The spec table and MAME, DOSBox Staging and 86Box as read all replicate the alpha into
+/// R, G and B (AI44 likewise puts its intensity in RGB in all of them). The conformance
+/// README reports a disagreement on A8/AI44; the alternative here is an opaque-white RGB.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum A8Expansion {
+    /// `ARGB = (a, a, a, a)`.
+    #[default]
+    AlphaInRgb,
+    /// UNVERIFIED alternative: `ARGB = (a, ff, ff, ff)`.
+    WhiteRgb,
+}
+
+/// When writes to the NCC tables take effect.
+///
+/// MAME and 86Box (the default) use a table from the next triangle on. DOSBox Staging
+/// re-expands the tables only when another TMU register is written afterwards.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum NccUpdate {
+    /// The next texel uses the new table.
+    #[default]
+    Immediate,
+    /// DOSBox: the new table is used once a texture register (`textureMode` ..
+    /// `trexInit1`) has been written. UNVERIFIED which registers DOSBox counts.
+    OnTextureRegWrite,
+}
+
+/// Whether `textureMode` bit 30 (trilinear) reverses the blend on odd LODs.
+///
+/// The spec defines it and 86Box implements it (the default, as the project decided); MAME
+/// marks it unimplemented and DOSBox ignores it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Trilinear {
+    /// Spec and 86Box: reverse blend when the integer LOD is odd.
+    #[default]
+    Spec,
+    /// MAME and DOSBox: the bit has no effect.
+    Ignored,
+}
+
+/// Whether `tLOD` bit 23 (`lod_zerofrac`) forces the LOD fraction to 0.
+///
+/// The spec defines it; none of the three references implements it, so the default ignores
+/// it to match their consensus.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum LodZeroFrac {
+    /// MAME, DOSBox, 86Box: ignored.
+    #[default]
+    Ignored,
+    /// Spec 5.51: the LOD fraction reads as 0.
+    Spec,
+}
+
+/// Switches for behaviour on which the references disagree. `Default` is the majority of
+/// MAME, DOSBox Staging and 86Box, except `trilinear`, which follows the spec.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct TexelProfile {
+    /// LOD computation.
+    pub lod: LodCalc,
+    /// LOD dither magnitude.
+    pub lod_dither: LodDither,
+    /// Bilinear weight precision.
+    pub bilinear: BilinearPrecision,
+    /// A8 texel expansion.
+    pub a8: A8Expansion,
+    /// When NCC table writes take effect.
+    pub ncc_update: NccUpdate,
+    /// The trilinear bit.
+    pub trilinear: Trilinear,
+    /// The `lod_zerofrac` bit.
+    pub lod_zerofrac: LodZeroFrac,
+}
+
+/// One texture mapping unit: its registers, texture memory, NCC tables and palette.
+pub struct Tmu {
+    /// TMU number, 0..=2.
+    index: u8,
+    /// Texture memory.
+    ram: Vec<u8>,
+    /// Memory size minus 1 (a power of two minus 1).
+    ram_mask: u32,
+    /// Behaviour switches.
+    profile: TexelProfile,
+    /// `textureMode`.
+    texture_mode: u32,
+    /// `tLOD`.
+    t_lod: u32,
+    /// `tDetail`.
+    t_detail: u32,
+    /// `texBaseAddr`, `texBaseAddr1`, `texBaseAddr2`, `texBaseAddr38`.
+    tex_base: [u32; 4],
+    /// `trexInit0`, `trexInit1` (stored only).
+    trex_init: [u32; 2],
+    /// Raw NCC table registers.
+    ncc_regs: [NccRegs; 2],
+    /// Expanded NCC tables in use.
+    ncc: [[Rgb8; 256]; 2],
+    /// NCC registers changed but not yet expanded ([`NccUpdate::OnTextureRegWrite`]).
+    ncc_stale: bool,
+    /// The 8-bit palette.
+    palette: [Rgb8; 256],
+    /// Start S, T, W at vertex A (.32 fixed point).
+    start: [Fx32; 3],
+    /// dS/dX, dT/dX, dW/dX (.32).
+    ddx: [Fx32; 3],
+    /// dS/dY, dT/dY, dW/dY (.32).
+    ddy: [Fx32; 3],
+    /// Memory layout of the current texture.
+    layout: Layout,
+    /// Combine unit configuration from `textureMode`.
+    combine: TextureCombine,
+    /// Base LOD (8.8) of the current triangle.
+    lod_base: i32,
+}
+
+/// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero.
+///
+/// Source: MAME `float_to_int64(data, 32)` (used for `fstartS` .. `fdWdY` on the TMUs);
+/// DOSBox and 86Box (`(int64_t)(f * 2^32)`) keep the same 32 fraction bits.
+fn float_to_fx32(data: u32) -> Fx32 {
+    let exponent = ((data >> 23) & 0xff) as i32 - 127 - 23 + 32;
+    let mantissa = i64::from((data & 0x7f_ffff) | 0x80_0000);
+    let magnitude = if exponent < 0 {
+        if exponent > -64 {
+            mantissa >> -exponent
+        } else {
+            0
+        }
+    } else if exponent < 64 {
+        mantissa.wrapping_shl(exponent as u32)
+    } else {
+        i64::MAX
+    };
+    if data & 0x8000_0000 != 0 {
+        magnitude.wrapping_neg()
+    } else {
+        magnitude
+    }
+}
+
+impl Tmu {
+    /// A TMU with `mem_bytes` of texture memory (1, 2 or 4 MiB; other sizes are rounded up
+    /// to a power of two within 1..=4 MiB). `index` is 0..=2.
+    pub fn new(index: u8, mem_bytes: usize) -> Self {
+        let size = mem_bytes.clamp(1 << 20, 4 << 20).next_power_of_two();
+        let ram_mask = (size - 1) as u32;
+        Self {
+            index,
+            ram: vec![0; size],
+            ram_mask,
+            profile: TexelProfile::default(),
+            texture_mode: 0,
+            t_lod: 0,
+            t_detail: 0,
+            tex_base: [0; 4],
+            trex_init: [0; 2],
+            ncc_regs: [[0; 12]; 2],
+            ncc: [[[0; 3]; 256]; 2],
+            ncc_stale: false,
+            palette: [[0; 3]; 256],
+            start: [0; 3],
+            ddx: [0; 3],
+            ddy: [0; 3],
+            layout: Layout::new(0, 0, &[0; 4], ram_mask),
+            combine: TextureCombine::from_texture_mode(0),
+            lod_base: 0,
+        }
+    }
+
+    /// The TMU number given to [`Tmu::new`].
+    pub fn index(&self) -> u8 {
+        self.index
+    }
+
+    /// Selects the behaviour switches.
+    pub fn set_profile(&mut self, p: TexelProfile) {
+        self.profile = p;
+        if p.ncc_update == NccUpdate::Immediate {
+            self.expand_ncc();
+        }
+    }
+
+    /// The behaviour switches in use.
+    pub fn profile(&self) -> TexelProfile {
+        self.profile
+    }
+
+    /// The texture memory, as written.
+    pub fn memory(&self) -> &[u8] {
+        &self.ram
+    }
+
+    /// The last values written to `trexInit0` and `trexInit1` (spec 5.54, 5.55).
+    pub fn trex_init(&self) -> [u32; 2] {
+        self.trex_init
+    }
+
+    /// A register write that reached this TMU, by its normal-map byte offset
+    /// (0x000..=0x3fc; other bits are ignored).
+    ///
+    /// S/T start and gradient registers are 14.18 ([`Fx14_18`]), W ones 2.30 ([`Fx2_30`]).
+    /// The float aliases (`fstartS` 0x0b4 .. `fdWdY` 0x0fc) are accepted too, raw IEEE
+    /// singles, and converted with the 32 fraction bits the references keep. Offsets that
+    /// are not TMU registers are ignored.
+    pub fn write_reg(&mut self, offset: u32, value: u32) {
+        let offset = offset & 0x3fc;
+        let fixed_st = |v: u32| Fx32::from(v as i32) << 14;
+        let fixed_w = |v: u32| Fx32::from(v as i32) << 2;
+        match offset {
+            addr::START_S | addr::START_T => {
+                self.start[((offset - addr::START_S) / 4) as usize] = fixed_st(value)
+            }
+            addr::START_W => self.start[2] = fixed_w(value),
+            addr::D_S_DX | addr::D_T_DX => {
+                self.ddx[((offset - addr::D_S_DX) / 4) as usize] = fixed_st(value)
+            }
+            addr::D_W_DX => self.ddx[2] = fixed_w(value),
+            addr::D_S_DY | addr::D_T_DY => {
+                self.ddy[((offset - addr::D_S_DY) / 4) as usize] = fixed_st(value)
+            }
+            addr::D_W_DY => self.ddy[2] = fixed_w(value),
+            addr::F_START_S..=addr::F_START_W => {
+                self.start[((offset - addr::F_START_S) / 4) as usize] = float_to_fx32(value)
+            }
+            addr::F_D_S_DX..=addr::F_D_W_DX => {
+                self.ddx[((offset - addr::F_D_S_DX) / 4) as usize] = float_to_fx32(value)
+            }
+            addr::F_D_S_DY..=addr::F_D_W_DY => {
+                self.ddy[((offset - addr::F_D_S_DY) / 4) as usize] = float_to_fx32(value)
+            }
+            addr::TEXTURE_MODE..=addr::TREX_INIT1 => {
+                match offset {
+                    addr::TEXTURE_MODE => self.texture_mode = value,
+                    addr::T_LOD => self.t_lod = value,
+                    addr::T_DETAIL => self.t_detail = value,
+                    addr::TREX_INIT0 | addr::TREX_INIT1 => {
+                        self.trex_init[((offset - addr::TREX_INIT0) / 4) as usize] = value
+                    }
+                    _ => self.tex_base[((offset - addr::TEX_BASE_ADDR) / 4) as usize] = value,
+                }
+                self.refresh();
+                if self.ncc_stale {
+                    self.expand_ncc();
+                }
+            }
+            o if (addr::NCC_TABLE0..addr::NCC_TABLE1 + 48).contains(&o) => {
+                let word = ((o - addr::NCC_TABLE0) / 4) as usize;
+                self.write_ncc(word / 12, word % 12, value);
+            }
+            _ => {}
+        }
+    }
+
+    /// A 32-bit write into this TMU's texture download window: `addr` is the aperture offset
+    /// minus 0x800000 (TMU-select bits 22:21 may still be present; they are ignored).
+    pub fn write_texture(&mut self, addr: u32, value: u32) {
+        self.download(addr, value);
+    }
+
+    /// Called at the start of each triangle, after its register writes: computes the base
+    /// LOD from the S/T gradients.
+    pub fn begin_triangle(&mut self) {
+        let g = [self.ddx[0], self.ddy[0], self.ddx[1], self.ddy[1]];
+        self.lod_base = lod::lod_base(self.profile.lod, g, self.t_lod);
+    }
+
+    /// Subpixel correction of the S/T/W start registers (`fbzColorPath` bit 26):
+    /// `start += (dx * dXdx + dy * dXdy) >> 4`, with the FBI's 12.4 offsets. The corrected
+    /// values replace the start registers, so a triangle that does not resend them is
+    /// corrected again (spec 9.4). Source: MAME and 86Box apply it at 32 fraction bits.
+    pub fn subpixel_adjust(&mut self, dx_12_4: i32, dy_12_4: i32) {
+        for i in 0..3 {
+            let delta = i64::from(dx_12_4)
+                .wrapping_mul(self.ddx[i])
+                .wrapping_add(i64::from(dy_12_4).wrapping_mul(self.ddy[i]));
+            self.start[i] = self.start[i].wrapping_add(delta >> 4);
+        }
+    }
+
+    /// The TMU's output for one pixel.
+    ///
+    /// `dx`, `dy`: integer pixel offsets from vertex A's integer position; `x`, `y`: screen
+    /// position (LOD dither); `other`: the upstream TMU's output (black and transparent for
+    /// the last TMU of the chain).
+    pub fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32, other: Rgba) -> Rgba {
+        let at = |i: usize| {
+            self.start[i]
+                .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[i]))
+                .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
+        };
+        let smp = self.sample(at(0), at(1), at(2), x, y);
+        let factors = Factors {
+            detail: detail_factor(self.t_detail, smp.lod),
+            lod_fraction: smp.lod_fraction,
+            odd_lod: self.profile.trilinear == Trilinear::Spec && smp.odd_lod,
+        };
+        let [r, g, b, a] =
+            self.combine
+                .combine(smp.texel, [other.r, other.g, other.b, other.a], &factors);
+        Rgba { r, g, b, a }
+    }
+
+    /// Recomputes what depends on the texture registers.
+    fn refresh(&mut self) {
+        self.layout = Layout::new(self.texture_mode, self.t_lod, &self.tex_base, self.ram_mask);
+        self.combine = TextureCombine::from_texture_mode(self.texture_mode);
+    }
+
+    /// A write to word `word` (0..12) of NCC table `table` (0, 1), or to the palette.
+    fn write_ncc(&mut self, table: usize, word: usize, value: u32) {
+        match sst1_ncc::classify_write(table, word, value) {
+            NccWrite::Table { table, word, value } => {
+                self.ncc_regs[table][word] = value;
+                match self.profile.ncc_update {
+                    NccUpdate::Immediate => {
+                        self.ncc[table] = sst1_ncc::expand(&self.ncc_regs[table])
+                    }
+                    NccUpdate::OnTextureRegWrite => self.ncc_stale = true,
+                }
+            }
+            NccWrite::Palette { index, rgb } => self.palette[usize::from(index)] = rgb,
+        }
+    }
+
+    /// Expands both NCC tables from their registers.
+    fn expand_ncc(&mut self) {
+        self.ncc = [
+            sst1_ncc::expand(&self.ncc_regs[0]),
+            sst1_ncc::expand(&self.ncc_regs[1]),
+        ];
+        self.ncc_stale = false;
+    }
+
+    /// The tables a texel decode needs.
+    fn lookups(&self) -> format::Lookups<'_> {
+        format::Lookups {
+            ncc: &self.ncc[usize::from(TextureMode(self.texture_mode).tnccselect())],
+            palette: &self.palette,
+            a8: self.profile.a8,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,1 +1,309 @@
-fn main() {}
+//! `voodoo`: replay SST-1 register traces, inspect and convert them, decode registers.
+//!
+//! Trace formats are those of the `sst1-trace` crate: the plain-text write-log
+//! (`shared/docs/trace-text-format.md`) and our binary form, either gzip-compressed.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressStyle};
+use sst1_board::{Board, BufferKind};
+use sst1_regs::{addr, map, RegisterBus};
+use sst1_trace::{
+    encode_binary, execute, load_trace, read_trace, rgb565_to_rgb8, write_dumps, write_text, Dump,
+    OpCounts, Trace,
+};
+
+/// The trace `voodoo demo` replays: Gouraud-shaded triangles with 4×4 dithering.
+const DEMO_TRACE: &[u8] =
+    include_bytes!("../../../traces/conformance/traces/gouraud_dither4.trace.gz");
+
+#[derive(Parser)]
+#[command(
+    name = "voodoo",
+    version,
+    about = "3dfx Voodoo Graphics (SST-1) emulator tools"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Replay a trace: write its dumps and, optionally, the displayed buffer as PNG.
+    Replay {
+        /// Trace file: text or binary, optionally gzip-compressed.
+        trace: PathBuf,
+        /// Folder for the trace's dump files (created if missing).
+        #[arg(long, default_value = ".")]
+        out: PathBuf,
+        /// Write the front (displayed) buffer at the end as a PNG.
+        #[arg(long)]
+        png: Option<PathBuf>,
+        /// Print the pixel and command counters at the end.
+        #[arg(long)]
+        stats: bool,
+        /// Write the counters as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        stats_json: Option<PathBuf>,
+    },
+    /// Replay the bundled demo trace and write the picture as a PNG.
+    Demo {
+        /// Where to write the picture.
+        #[arg(long, default_value = "voodoo-demo.png")]
+        png: PathBuf,
+    },
+    /// Summarise a trace: board, writes, triangles, fills, swaps, registers touched.
+    Info {
+        /// Trace file: text or binary, optionally gzip-compressed.
+        trace: PathBuf,
+    },
+    /// Decode a register value by name (`fbzMode`) or byte offset (`0x110`).
+    Reg {
+        /// Register name or byte offset (hex with 0x, or decimal).
+        register: String,
+        /// The 32-bit value (hex with 0x, or decimal).
+        value: String,
+    },
+    /// Convert a trace between the text and binary forms, chosen by OUT's extension:
+    /// `.vtrace` binary, `.vtrace.gz` gzip binary, `.gz` gzip text, anything else text.
+    Convert {
+        /// Input trace, either form.
+        input: PathBuf,
+        /// Output file.
+        output: PathBuf,
+    },
+}
+
+fn main() -> ExitCode {
+    let result = match Cli::parse().command {
+        Command::Replay {
+            trace,
+            out,
+            png,
+            stats,
+            stats_json,
+        } => replay(&trace, &out, png.as_deref(), stats, stats_json.as_deref()),
+        Command::Demo { png } => demo(&png),
+        Command::Info { trace } => info(&trace),
+        Command::Reg { register, value } => reg(&register, &value),
+        Command::Convert { input, output } => convert(&input, &output),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("voodoo: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs a trace on a fresh board, with a progress bar when stderr is a terminal.
+fn run(trace: &Trace) -> (Board, Vec<Dump>) {
+    let mut board = Board::new(trace.board_config());
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = ProgressBar::new(trace.ops.len() as u64);
+        if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} ops {elapsed}") {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let dumps = execute(&trace.ops, &mut board, |done| bar.set_position(done as u64));
+    bar.finish_and_clear();
+    (board, dumps)
+}
+
+/// Writes the board's front buffer as an RGB PNG (RGB565 expanded by bit replication).
+fn write_front_png(board: &Board, path: &Path) -> Result<(u32, u32), String> {
+    let (width, height) = board.display_size();
+    let pixels = board.dump_buffer(BufferKind::Front);
+    let rgb: Vec<u8> = pixels.iter().flat_map(|&p| rgb565_to_rgb8(p)).collect();
+    let image = image::RgbImage::from_raw(width, height, rgb)
+        .ok_or_else(|| format!("front buffer is not {width}x{height}"))?;
+    image
+        .save(path)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok((width, height))
+}
+
+/// The counters `--stats` prints.
+struct Stats {
+    pixels_in: u32,
+    chroma_fail: u32,
+    zfunc_fail: u32,
+    afunc_fail: u32,
+    pixels_out: u32,
+    triangles: u64,
+    fastfills: u64,
+    swaps: u64,
+}
+
+impl Stats {
+    /// HOOK(board.stats()): once the board exposes its counters, take them from there.
+    /// Until then the pixel counters are read through the bus (24-bit registers, spec
+    /// 5.31-5.35) and the command counts come from the trace's own writes.
+    fn collect(board: &mut Board, counts: &OpCounts) -> Self {
+        let mut counter = |offset| board.read32(offset) & 0xff_ffff;
+        Stats {
+            pixels_in: counter(addr::FBI_PIXELS_IN),
+            chroma_fail: counter(addr::FBI_CHROMA_FAIL),
+            zfunc_fail: counter(addr::FBI_ZFUNC_FAIL),
+            afunc_fail: counter(addr::FBI_AFUNC_FAIL),
+            pixels_out: counter(addr::FBI_PIXELS_OUT),
+            triangles: counts.triangles,
+            fastfills: counts.fastfills,
+            swaps: counts.swaps,
+        }
+    }
+
+    fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "pixels_in": self.pixels_in,
+            "chroma_fail": self.chroma_fail,
+            "zfunc_fail": self.zfunc_fail,
+            "afunc_fail": self.afunc_fail,
+            "pixels_out": self.pixels_out,
+            "triangles": self.triangles,
+            "fastfills": self.fastfills,
+            "swaps": self.swaps,
+        })
+    }
+}
+
+fn replay(
+    path: &Path,
+    out: &Path,
+    png: Option<&Path>,
+    stats: bool,
+    stats_json: Option<&Path>,
+) -> Result<(), String> {
+    let trace = load_trace(path).map_err(|e| e.to_string())?;
+    let (mut board, dumps) = run(&trace);
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    for written in write_dumps(&dumps, out).map_err(|e| e.to_string())? {
+        println!("wrote {}", written.display());
+    }
+    if let Some(png) = png {
+        let (w, h) = write_front_png(&board, png)?;
+        println!("wrote {} ({w}x{h})", png.display());
+    }
+    if stats || stats_json.is_some() {
+        let s = Stats::collect(&mut board, &OpCounts::of(&trace));
+        if stats {
+            println!("pixels in    {}", s.pixels_in);
+            println!("chroma fail  {}", s.chroma_fail);
+            println!("zfunc fail   {}", s.zfunc_fail);
+            println!("afunc fail   {}", s.afunc_fail);
+            println!("pixels out   {}", s.pixels_out);
+            println!("triangles    {}", s.triangles);
+            println!("fastfills    {}", s.fastfills);
+            println!("swaps        {}", s.swaps);
+            // HOOK(board.diagnostics()): print the board's diagnostic counts here.
+        }
+        if let Some(file) = stats_json {
+            let text = serde_json::to_string_pretty(&s.to_json()).map_err(|e| e.to_string())?;
+            std::fs::write(file, text + "\n").map_err(|e| format!("{}: {e}", file.display()))?;
+        }
+    }
+    Ok(())
+}
+
+fn demo(png: &Path) -> Result<(), String> {
+    let trace = read_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
+    let (board, _) = run(&trace);
+    let (w, h) = write_front_png(&board, png)?;
+    println!(
+        "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",
+        png.display()
+    );
+    Ok(())
+}
+
+fn info(path: &Path) -> Result<(), String> {
+    let trace = load_trace(path).map_err(|e| e.to_string())?;
+    let config = trace.board_config();
+    let c = OpCounts::of(&trace);
+    println!(
+        "board: fbi_mb {}, tmus {}, tmu_mb {}",
+        config.fbi_mb, config.tmus, config.tmu_mb
+    );
+    println!(
+        "ops: {} ({} writes, {} reads, {} pci, {} dumps)",
+        trace.ops.len(),
+        c.writes,
+        c.reads,
+        c.pci,
+        c.dumps
+    );
+    println!(
+        "writes: {} register, {} frame buffer, {} texture",
+        c.register_writes, c.lfb_writes, c.texture_writes
+    );
+    println!(
+        "triangles: {}, fastfills: {}, swaps: {}",
+        c.triangles, c.fastfills, c.swaps
+    );
+    for op in &trace.ops {
+        if let sst1_trace::TraceOp::Dump { buffer, file } = op {
+            println!("dump {} {file}", buffer.name());
+        }
+    }
+    println!("registers written:");
+    for (offset, n) in &c.registers {
+        println!("  {offset:#05x} {:<16} {n}", map::name_of(*offset));
+    }
+    Ok(())
+}
+
+/// A number: `0x` + hex digits, or decimal.
+fn parse_number(text: &str) -> Option<u32> {
+    match text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
+        Some(hex) => u32::from_str_radix(hex, 16).ok(),
+        None => text.parse().ok(),
+    }
+}
+
+fn reg(register: &str, value: &str) -> Result<(), String> {
+    let offset = match parse_number(register) {
+        Some(offset) if offset < 0x40_0000 => offset,
+        Some(offset) => return Err(format!("{offset:#x} is not in the register space")),
+        None => map::find(register)
+            .map(|desc| desc.offset)
+            .ok_or_else(|| format!("no register named `{register}`"))?,
+    };
+    let value = parse_number(value).ok_or_else(|| format!("`{value}` is not a 32-bit number"))?;
+    println!("{:#05x} {}", offset & 0x3fc, map::decode(offset, value));
+    Ok(())
+}
+
+fn convert(input: &Path, output: &Path) -> Result<(), String> {
+    let trace = load_trace(input).map_err(|e| e.to_string())?;
+    let name = output.to_string_lossy();
+    let (stem, gzip) = match name.strip_suffix(".gz") {
+        Some(stem) => (stem, true),
+        None => (&*name, false),
+    };
+    let mut bytes = if stem.ends_with(".vtrace") {
+        encode_binary(&trace)
+    } else {
+        write_text(&trace).into_bytes()
+    };
+    if gzip {
+        bytes = gzip_bytes(&bytes).map_err(|e| format!("{}: {e}", output.display()))?;
+    }
+    std::fs::write(output, bytes).map_err(|e| format!("{}: {e}", output.display()))?;
+    println!("wrote {} ({} ops)", output.display(), trace.ops.len());
+    Ok(())
+}
+
+fn gzip_bytes(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
+    use std::io::Write;
+    let mut encoder = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+    encoder.write_all(bytes)?;
+    encoder.finish()
+}

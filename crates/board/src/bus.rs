@@ -1,0 +1,143 @@
+//! Decoding of the PCI aperture (spec 4 and 5): register chip select and remapping,
+//! the LFB and texture regions, and PCI configuration space (spec 6).
+
+use pixelfx::{Command, NoTexture};
+use sst1_regs::{addr, map, RegisterBus};
+
+use crate::chain::Chain;
+use crate::diagnostics::Diagnostic;
+use crate::Board;
+
+/// Start of the linear frame buffer region.
+const LFB_BASE: u32 = 0x40_0000;
+/// Start of the texture download region.
+const TEX_BASE: u32 = 0x80_0000;
+/// `initEnable` in PCI configuration space (spec 6).
+const PCI_INIT_ENABLE: u32 = 0x40;
+
+impl Board {
+    /// The normal-map register offset and chip mask of a register-region address.
+    fn decode_register(&self, addr: u32) -> (u32, u32) {
+        let mut chips = (addr >> 10) & 0xf;
+        if chips == 0 {
+            chips = 0xf;
+        }
+        let mut offset = addr & 0x3fc;
+        // fbiInit3 bit 0 with address bit 21 selects the alternate triangle map (spec 5).
+        let remap = self.fbi.reg(addr::FBI_INIT3) & 1 != 0;
+        if remap && addr & 0x20_0000 != 0 {
+            offset = map::remap_offset(offset);
+        }
+        (offset, chips)
+    }
+
+    fn write_register(&mut self, bus_addr: u32, value: u32) {
+        let (offset, chips) = self.decode_register(bus_addr);
+        let Some(desc) = map::desc_of(offset) else {
+            self.diagnostics.note(Diagnostic::ReservedWrite);
+            return;
+        };
+        if !desc.access.contains(map::Access::WRITE) {
+            self.diagnostics.note(Diagnostic::ReadOnlyWrite);
+            return;
+        }
+        let is_init = matches!(offset, addr::FBI_INIT0..=addr::FBI_INIT3 | addr::FBI_INIT4);
+        if is_init && self.init_enable & 1 == 0 {
+            self.diagnostics.note(Diagnostic::InitWriteDisabled);
+            return;
+        }
+        // TMU writes first: a triangle command must see the TMUs' new state.
+        if desc.chips.contains(map::Chips::TREX) {
+            // Float S/T/W writes go to the TMUs as they are: the TMU keeps their 32
+            // fraction bits (MAME, DOSBox Staging and 86Box all do).
+            for (i, tmu) in self.tmus.iter_mut().enumerate() {
+                if chips & (2 << i) != 0 {
+                    tmu.write_reg(offset, value);
+                }
+            }
+        }
+        if chips & 1 == 0 || !desc.chips.contains(map::Chips::FBI) {
+            return;
+        }
+        match self.fbi.write_reg(offset, value) {
+            Command::None => {}
+            Command::Triangle => self.triangle(),
+            Command::Fastfill => self.fbi.fastfill(),
+            Command::Swap => self.fbi.swap(),
+        }
+    }
+
+    /// Run a triangle command with the TMU chain (spec 5.15).
+    fn triangle(&mut self) {
+        let cp = sst1_regs::FbzColorPath(self.fbi.reg(addr::FBZ_COLOR_PATH));
+        let init3 = sst1_regs::FbiInit3(self.fbi.reg(addr::FBI_INIT3));
+        let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
+        if cp.param_adjust() {
+            let (dx, dy) = self.fbi.params.subpixel_adjust();
+            if texturing {
+                for t in &mut self.tmus {
+                    t.subpixel_adjust(dx, dy);
+                }
+            }
+        }
+        if texturing {
+            for t in &mut self.tmus {
+                t.begin_triangle();
+            }
+            self.fbi.draw_triangle(&mut Chain { tmus: &mut self.tmus });
+        } else {
+            self.fbi.draw_triangle(&mut NoTexture);
+        }
+    }
+
+    fn write_texture(&mut self, bus_addr: u32, value: u32) {
+        let rel = bus_addr - TEX_BASE;
+        let tmu = ((rel >> 21) & 3) as usize;
+        match self.tmus.get_mut(tmu) {
+            Some(t) => t.write_texture(rel, value),
+            None => self.diagnostics.note(Diagnostic::MissingTmu),
+        }
+    }
+}
+
+
+impl RegisterBus for Board {
+    fn write32(&mut self, bus_addr: u32, value: u32) {
+        let bus_addr = bus_addr & 0xff_ffff;
+        if bus_addr < LFB_BASE {
+            self.write_register(bus_addr, value);
+        } else if bus_addr < TEX_BASE {
+            self.fbi.lfb_write(bus_addr - LFB_BASE, value);
+        } else {
+            self.write_texture(bus_addr, value);
+        }
+    }
+
+    fn read32(&mut self, bus_addr: u32) -> u32 {
+        let bus_addr = bus_addr & 0xff_ffff;
+        if bus_addr < LFB_BASE {
+            // Reads ignore the chip field and always come from the FBI (spec 5).
+            let (offset, _) = self.decode_register(bus_addr);
+            match map::desc_of(offset) {
+                Some(d) if d.access.contains(map::Access::READ) => self.fbi.read_reg(offset),
+                _ => {
+                    self.diagnostics.note(Diagnostic::WriteOnlyRead);
+                    self.fbi.read_reg(offset)
+                }
+            }
+        } else if bus_addr < TEX_BASE {
+            self.fbi.lfb_read(bus_addr - LFB_BASE)
+        } else {
+            // Texture memory is write-only (spec 9).
+            0xffff_ffff
+        }
+    }
+
+    fn pci_write(&mut self, offset: u32, value: u32) {
+        if offset == PCI_INIT_ENABLE {
+            self.init_enable = value;
+        } else {
+            self.diagnostics.note(Diagnostic::UnmodelledPci);
+        }
+    }
+}

@@ -1,0 +1,634 @@
+//! Vertex layout, triangle setup, points, lines and vertex arrays.
+//!
+//! Spec section 5 (triangle setup registers: `FvertexAx..`, `Fr`/`FdRdX`/`FdRdY`...,
+//! `FtriangleCMD`). Glide 3 on the SST-1 sends the floating-point register versions:
+//! vertex coordinates snapped by adding 3 * 2^18 (which leaves 4 fraction bits in the
+//! float mantissa), each parameter's start value at vertex A, and its X and Y gradients
+//! computed in single precision as
+//!
+//! ```text
+//! area = (xa - xb) * (yb - yc) - (xb - xc) * (ya - yb)      (snapped coordinates)
+//! dpdx = (pa - pb) * ((yb - yc) / area) - (pb - pc) * ((ya - yb) / area)
+//! dpdy = (pb - pc) * ((xa - xb) / area) - (pa - pb) * ((xb - xc) / area)
+//! ```
+//!
+//! with the vertices sorted by snapped Y (ties broken the way 3dfx's `_trisetup`
+//! does), every product and difference rounded to `f32` in that order. Source: 3dfx
+//! SST-1 Glide 3 gxdraw.c `_trisetup` (read for the operation order); verified bit for
+//! bit against the test04 trace (tests/trisetup_trace.rs).
+
+use crate::consts::*;
+use crate::hw::bits::*;
+use crate::hw::{tmu_chip, PACKER_FIX};
+use sst1_regs::addr::*;
+
+/// Added to window coordinates so the float keeps exactly 4 fraction bits (12.4).
+pub(crate) const SNAP_BIAS: f32 = (3 << 18) as f32;
+
+/// Byte offsets of the packed-ARGB channels inside a `GR_PARAM_PARGB` word
+/// (little-endian host).
+const PARGB_A: i32 = 3;
+const PARGB_R: i32 = 2;
+const PARGB_G: i32 = 1;
+const PARGB_B: i32 = 0;
+
+/// Distance from a parameter's start register to its d/dX and d/dY registers.
+const DPDX: u32 = 0x20;
+const DPDY: u32 = 0x40;
+
+/// Parameters an iterated triangle needs (3dfx's `STATE_REQUIRES_*`).
+mod req {
+    pub const IT_DRGB: u32 = 1 << 0;
+    pub const IT_ALPHA: u32 = 1 << 1;
+    pub const OOZ: u32 = 1 << 2;
+    pub const OOW_FBI: u32 = 1 << 3;
+    pub const W_TMU0: u32 = 1 << 4;
+    pub const ST_TMU0: u32 = 1 << 5;
+    pub const W_TMU1: u32 = 1 << 6;
+    pub const ST_TMU1: u32 = 1 << 7;
+    pub const W_TMU2: u32 = 1 << 8;
+    pub const ST_TMU2: u32 = 1 << 9;
+}
+
+/// One `grVertexLayout` entry: byte offset in the vertex and whether it is enabled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Param {
+    /// Byte offset in the vertex.
+    pub offset: i32,
+    /// `GR_PARAM_ENABLE` or `GR_PARAM_DISABLE`.
+    pub enabled: bool,
+}
+
+/// The vertex layout (`grVertexLayout` state).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct VertexLayout {
+    /// `GR_PARAM_XY`.
+    pub xy: Param,
+    /// `GR_PARAM_Z`.
+    pub z: Param,
+    /// `GR_PARAM_W`.
+    pub w: Param,
+    /// `GR_PARAM_Q`.
+    pub q: Param,
+    /// `GR_PARAM_FOG_EXT` (accepted, unused by the SST-1).
+    pub fog: Param,
+    /// `GR_PARAM_A`.
+    pub a: Param,
+    /// `GR_PARAM_RGB`.
+    pub rgb: Param,
+    /// `GR_PARAM_PARGB`.
+    pub pargb: Param,
+    /// `GR_PARAM_ST0..ST2`.
+    pub st: [Param; 3],
+    /// `GR_PARAM_Q0..Q2`.
+    pub qn: [Param; 3],
+    /// Whether colours come packed (`GR_U8`, after `GR_PARAM_PARGB`) or as floats.
+    pub packed_color: bool,
+}
+
+/// What one setup step sends: a parameter (start + gradients) or a packer write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Entry {
+    /// Float parameter at byte offset `off` of the vertex, start register `reg`.
+    Float { off: i32, reg: u32 },
+    /// Byte `off` of the vertex (packed colour channel) as a float 0..255.
+    Byte { off: i32, reg: u32 },
+    /// The packer workaround write of 0.0 (between chip-field changes).
+    Packer,
+}
+
+/// Read the float at byte offset `off` of a vertex (0.0 outside it).
+pub(crate) fn fetch(v: &[f32], off: i32) -> f32 {
+    usize::try_from(off)
+        .ok()
+        .filter(|o| o % 4 == 0)
+        .and_then(|o| v.get(o / 4))
+        .copied()
+        .unwrap_or(0.0)
+}
+
+/// Read byte `off` of a vertex as a float (0.0 outside it).
+fn fetch_byte(v: &[f32], off: i32) -> f32 {
+    let Ok(o) = usize::try_from(off) else {
+        return 0.0;
+    };
+    v.get(o / 4).map_or(0.0, |w| f32::from(w.to_bits().to_le_bytes()[o % 4]))
+}
+
+fn value(v: &[f32], e: Entry) -> f32 {
+    match e {
+        Entry::Float { off, .. } => fetch(v, off),
+        Entry::Byte { off, .. } => fetch_byte(v, off),
+        Entry::Packer => 0.0,
+    }
+}
+
+/// Orderable key of a float's bits (3dfx flips negative floats' magnitude bits so an
+/// integer compare orders them).
+fn sort_key(f: f32) -> i32 {
+    let i = f.to_bits() as i32;
+    if i < 0 {
+        i ^ 0x7fff_ffff
+    } else {
+        i
+    }
+}
+
+impl crate::Glide {
+    /// `_grUpdateParamIndex` + `_grRebuildDataList`: decide which parameters a
+    /// triangle carries and in which register order.
+    pub(crate) fn update_param_index(&mut self) {
+        let st = &self.st;
+        let l = &self.layout;
+        let mut p = 0u32;
+        if st.fbi.fbz_color_path & ENTEXTUREMAP != 0 {
+            let m = st.tmu_mask;
+            p |= req::OOW_FBI;
+            if m & 1 != 0 {
+                p |= req::W_TMU0 | req::ST_TMU0;
+            }
+            if m & 2 != 0 {
+                p |= req::W_TMU1 | req::ST_TMU1;
+            }
+            if m & 4 != 0 {
+                p |= req::W_TMU2 | req::ST_TMU2;
+            }
+        }
+        if st.cc_requires_it_rgb {
+            p |= req::IT_DRGB;
+        }
+        if st.ac_requires_it_alpha {
+            p |= req::IT_ALPHA;
+        }
+        if st.fbi.fbz_color_path & CC_ALOCALSELECT == ALOCAL_Z {
+            p |= req::OOZ;
+        }
+        let fbz = st.fbi.fbz_mode;
+        if fbz & ENDEPTHBUFFER != 0 {
+            p |= if fbz & WBUFFER != 0 { req::OOW_FBI } else { req::OOZ };
+        }
+        let fog = st.fbi.fog_mode;
+        if fog & ENFOGGING != 0 {
+            p |= if fog & FOG_Z != 0 {
+                req::OOZ
+            } else if fog & FOG_ALPHA != 0 {
+                req::IT_ALPHA
+            } else {
+                req::OOW_FBI
+            };
+        }
+        let window = st.coordinate_space == GR_WINDOW_COORDS;
+        if p & req::W_TMU0 != 0 {
+            let drop = if window { !l.qn[0].enabled } else { !l.qn[0].enabled && !l.q.enabled };
+            if drop {
+                p &= !req::W_TMU0;
+            }
+        }
+        if p & (req::ST_TMU0 | req::ST_TMU1) == (req::ST_TMU0 | req::ST_TMU1) && !l.st[1].enabled {
+            p &= !req::ST_TMU1;
+        }
+        if p & req::W_TMU1 != 0 {
+            // 3dfx's code clears the TMU0 bit here (not TMU1); kept for identical output.
+            let drop = if window { !l.qn[1].enabled } else { !l.qn[1].enabled && !l.q.enabled };
+            if drop {
+                p &= !req::W_TMU0;
+            }
+        }
+        if l.packed_color {
+            if !l.pargb.enabled {
+                p &= !(req::IT_ALPHA | req::IT_DRGB);
+            }
+        } else {
+            if !l.a.enabled {
+                p &= !req::IT_ALPHA;
+            }
+            if !l.rgb.enabled {
+                p &= !req::IT_DRGB;
+            }
+        }
+        if !l.z.enabled {
+            p &= !req::OOZ;
+        }
+        if !l.q.enabled {
+            p &= !req::OOW_FBI;
+        }
+        if !window && !l.w.enabled {
+            p &= !req::OOW_FBI;
+        }
+        if !l.st[0].enabled {
+            p &= !req::ST_TMU0;
+        }
+        if !l.st[1].enabled {
+            p &= !req::ST_TMU1;
+        }
+        if !l.qn[0].enabled {
+            p &= !req::W_TMU0;
+        }
+        if !l.qn[1].enabled {
+            p &= !req::W_TMU1;
+        }
+        self.param_index = p;
+        self.rebuild_data_list();
+    }
+
+    fn rebuild_data_list(&mut self) {
+        let p = self.param_index;
+        let l = self.layout;
+        let window = self.st.coordinate_space == GR_WINDOW_COORDS;
+        let mut d: Vec<Entry> = Vec::with_capacity(16);
+        if p & req::IT_DRGB != 0 {
+            if l.packed_color {
+                let o = l.pargb.offset;
+                d.push(Entry::Byte { off: o + PARGB_R, reg: F_START_R });
+                d.push(Entry::Byte { off: o + PARGB_G, reg: F_START_G });
+                d.push(Entry::Byte { off: o + PARGB_B, reg: F_START_B });
+            } else {
+                let o = l.rgb.offset;
+                d.push(Entry::Float { off: o, reg: F_START_R });
+                d.push(Entry::Float { off: o + 4, reg: F_START_G });
+                d.push(Entry::Float { off: o + 8, reg: F_START_B });
+            }
+        }
+        if p & req::OOZ != 0 {
+            d.push(Entry::Float { off: l.z.offset, reg: F_START_Z });
+        }
+        if p & req::IT_ALPHA != 0 {
+            if l.packed_color {
+                d.push(Entry::Byte { off: l.pargb.offset + PARGB_A, reg: F_START_A });
+            } else {
+                d.push(Entry::Float { off: l.a.offset, reg: F_START_A });
+            }
+        }
+        if p & req::ST_TMU0 != 0 {
+            d.push(Entry::Float { off: l.st[0].offset, reg: F_START_S });
+            d.push(Entry::Float { off: l.st[0].offset + 4, reg: F_START_T });
+        }
+        if p & req::OOW_FBI != 0 {
+            d.push(Entry::Float { off: l.q.offset, reg: F_START_W });
+        }
+        let w_source = |qn: Param| {
+            if qn.enabled {
+                qn.offset
+            } else if window {
+                l.q.offset
+            } else {
+                l.w.offset
+            }
+        };
+        // Registers addressed to TMUs only: chip field 0xe (all TMUs) / 0xc (TMU1, 2).
+        let all_tmus = tmu_chip(0) | tmu_chip(1) | tmu_chip(2);
+        let upper_tmus = tmu_chip(1) | tmu_chip(2);
+        if p & req::W_TMU0 != 0 {
+            d.push(Entry::Packer);
+            d.push(Entry::Float { off: w_source(l.qn[0]), reg: all_tmus | F_START_W });
+        }
+        let packer_needed = if p & req::ST_TMU1 != 0 {
+            d.push(Entry::Packer);
+            d.push(Entry::Float { off: l.st[1].offset, reg: upper_tmus | F_START_S });
+            d.push(Entry::Float { off: l.st[1].offset + 4, reg: upper_tmus | F_START_T });
+            false
+        } else {
+            true
+        };
+        if p & req::W_TMU1 != 0 {
+            if packer_needed {
+                d.push(Entry::Packer);
+            }
+            d.push(Entry::Float { off: w_source(l.qn[1]), reg: upper_tmus | F_START_W });
+        }
+        // A packer write after the last parameter if it went to a TMU-only address.
+        if let Some(Entry::Float { reg, .. }) = d.last() {
+            if reg & 0x3c00 != 0 {
+                d.push(Entry::Packer);
+            }
+        }
+        self.data_list = d;
+    }
+
+    fn send_start(&mut self, e: Entry, v: f32) -> Option<u32> {
+        match e {
+            Entry::Packer => {
+                self.hw.wf(PACKER_FIX, 0.0);
+                None
+            }
+            Entry::Float { reg, .. } | Entry::Byte { reg, .. } => {
+                self.hw.wf(reg, v);
+                Some(reg)
+            }
+        }
+    }
+
+    /// Window-coordinate triangle setup (`_trisetup`). Returns 1 if drawn, 0 if
+    /// zero-area, -1 if culled.
+    pub(crate) fn trisetup(&mut self, va: &[f32], vb: &[f32], vc: &[f32]) -> i32 {
+        let xo = self.layout.xy.offset;
+        let y = |v: &[f32]| fetch(v, xo + 4) + SNAP_BIAS;
+        // Bit 0 of the cull mode: 1 for GR_CULL_NEGATIVE, 0 for GR_CULL_POSITIVE.
+        let mut cull = self.st.cull_mode & 1;
+        let (ka, kb, kc) = (sort_key(y(va)), sort_key(y(vb)), sort_key(y(vc)));
+        // Sort by Y; every odd permutation flips the culling sense.
+        let (fa, fb, fc) = if ka < kb {
+            if kb > kc {
+                if ka < kc {
+                    cull ^= 1;
+                    (va, vc, vb)
+                } else {
+                    (vc, va, vb)
+                }
+            } else {
+                (va, vb, vc)
+            }
+        } else if kb < kc {
+            if ka < kc {
+                cull ^= 1;
+                (vb, va, vc)
+            } else {
+                (vb, vc, va)
+            }
+        } else {
+            cull ^= 1;
+            (vc, vb, va)
+        };
+        let sx = |v: &[f32]| fetch(v, xo) + SNAP_BIAS;
+        let (xa, xb, xc) = (sx(fa), sx(fb), sx(fc));
+        let (ya, yb, yc) = (y(fa), y(fb), y(fc));
+        let mut dx_ab = xa - xb;
+        let mut dx_bc = xb - xc;
+        let mut dy_ab = ya - yb;
+        let mut dy_bc = yb - yc;
+        // x87 evaluation: products and difference in extended precision, one rounding
+        // to f32 on the store (the products of 12.4 coordinates are exact in f64).
+        let area = (f64::from(dx_ab) * f64::from(dy_bc) - f64::from(dx_bc) * f64::from(dy_ab)) as f32;
+        if area.to_bits() & 0x7fff_ffff == 0 {
+            return 0;
+        }
+        if self.st.cull_mode != GR_CULL_DISABLE && ((area.to_bits() as i32) ^ ((cull << 31) as i32)) >= 0 {
+            return -1;
+        }
+        self.flush_state();
+        let ooa = 1.0f32 / area;
+        self.hw.wf(F_VERTEX_AX, xa);
+        self.hw.wf(F_VERTEX_AY, ya);
+        self.hw.wf(F_VERTEX_BX, xb);
+        self.hw.wf(F_VERTEX_BY, yb);
+        self.hw.wf(F_VERTEX_CX, xc);
+        self.hw.wf(F_VERTEX_CY, yc);
+        dx_bc *= ooa;
+        dy_ab *= ooa;
+        dx_ab *= ooa;
+        dy_bc *= ooa;
+        for i in 0..self.data_list.len() {
+            let e = self.data_list[i];
+            let pa = value(fa, e);
+            let Some(reg) = self.send_start(e, pa) else {
+                continue;
+            };
+            // 3dfx's code was compiled for the x87: the parameter differences and the
+            // gradient expressions stay in extended precision and are rounded to f32
+            // once, when stored to the register (the scaled deltas above are f32
+            // variables). Matches test04; UNVERIFIED: f64 stands in for the 80-bit
+            // format, which can differ in the last bit for parameters whose
+            // differences need more than 53 bits.
+            let (pa, pb, pc) = (f64::from(pa), f64::from(value(fb, e)), f64::from(value(fc, e)));
+            let dp_ab = pa - pb;
+            let dp_bc = pb - pc;
+            self.hw.wf(reg + DPDX, (dp_ab * f64::from(dy_bc) - dp_bc * f64::from(dy_ab)) as f32);
+            self.hw.wf(reg + DPDY, (dp_bc * f64::from(dx_ab) - dp_ab * f64::from(dx_bc)) as f32);
+        }
+        self.hw.wf(F_TRIANGLE_CMD, area);
+        self.stats.triangles_drawn += 1;
+        1
+    }
+
+    /// Clip-coordinate triangle: project x, y (and the parameters that need 1/w) with
+    /// the viewport, then run window-coordinate setup.
+    /// UNVERIFIED: 3dfx's `_grVpDrawTriangle` scales parameters inside its own setup;
+    /// no glide-sdk trace exercises clip coordinates, so the operation order here is
+    /// ours.
+    pub(crate) fn vp_triangle(&mut self, va: &[f32], vb: &[f32], vc: &[f32]) -> i32 {
+        let a = self.project(va);
+        let b = self.project(vb);
+        let c = self.project(vc);
+        self.trisetup(&a, &b, &c)
+    }
+
+    /// Project one clip-coordinate vertex to window coordinates, in a copy of the
+    /// vertex laid out as the window-coordinate path expects.
+    fn project(&self, v: &[f32]) -> Vec<f32> {
+        let l = &self.layout;
+        let vp = self.st.viewport;
+        let oow = 1.0 / fetch(v, l.w.offset);
+        let mut out = v.to_vec();
+        let mut put = |off: i32, val: f32| {
+            if let Some(slot) = usize::try_from(off).ok().and_then(|o| out.get_mut(o / 4)) {
+                *slot = val;
+            }
+        };
+        put(l.xy.offset, fetch(v, l.xy.offset) * oow * vp.hwidth + vp.ox);
+        put(l.xy.offset + 4, fetch(v, l.xy.offset + 4) * oow * vp.hheight + vp.oy);
+        if l.z.enabled {
+            put(l.z.offset, fetch(v, l.z.offset) * oow * vp.hdepth + vp.oz);
+        }
+        if !l.packed_color {
+            if l.rgb.enabled {
+                for k in 0..3 {
+                    put(l.rgb.offset + 4 * k, fetch(v, l.rgb.offset + 4 * k) * 255.0);
+                }
+            }
+            if l.a.enabled {
+                put(l.a.offset, fetch(v, l.a.offset) * 255.0);
+            }
+        }
+        for t in 0..2 {
+            if l.st[t].enabled {
+                let scale = self.st.tmu.get(t).map_or([256.0; 2], |c| c.st_scale);
+                put(l.st[t].offset, fetch(v, l.st[t].offset) * oow * scale[0]);
+                put(l.st[t].offset + 4, fetch(v, l.st[t].offset + 4) * oow * scale[1]);
+            }
+        }
+        if l.q.enabled {
+            put(l.q.offset, fetch(v, l.q.offset) * oow);
+        } else {
+            put(l.q.offset, oow);
+        }
+        out
+    }
+
+    /// One triangle in the current coordinate space.
+    pub(crate) fn triangle(&mut self, a: &[f32], b: &[f32], c: &[f32]) {
+        self.stats.triangles_in += 1;
+        if self.st.coordinate_space == GR_WINDOW_COORDS {
+            self.trisetup(a, b, c);
+        } else {
+            self.vp_triangle(a, b, c);
+        }
+    }
+
+    /// `_grDrawPoints` (window coordinates): a one-pixel triangle at the pixel centre.
+    pub(crate) fn point(&mut self, v: &[f32]) {
+        self.flush_state();
+        let v = if self.st.coordinate_space == GR_WINDOW_COORDS { v.to_vec() } else { self.project(v) };
+        let v = v.as_slice();
+        let xo = self.layout.xy.offset;
+        // Adding 3 * 2^22 - 0.5 truncates to an integer (round-to-nearest on x - 0.5).
+        let bias = (3u32 << 22) as f32 - 0.5;
+        let fx = fetch(v, xo) + bias;
+        let fy = fetch(v, xo + 4) + bias;
+        let mut x = (fx.to_bits() as i32).wrapping_shl(4) as u32;
+        x = x.wrapping_add(8);
+        let mut y = (fy.to_bits() as i32).wrapping_shl(4) as u32;
+        self.hw.w(VERTEX_AX, x);
+        y = y.wrapping_add(8);
+        self.hw.w(VERTEX_AY, y);
+        x = x.wrapping_add(8);
+        self.hw.w(VERTEX_BX, x);
+        self.hw.w(VERTEX_BY, y);
+        y = y.wrapping_add(8);
+        self.hw.w(VERTEX_CX, x);
+        self.hw.w(VERTEX_CY, y);
+        for i in 0..self.data_list.len() {
+            let e = self.data_list[i];
+            let val = value(v, e);
+            self.send_start(e, val);
+        }
+        self.hw.w(TRIANGLE_CMD, 1);
+        self.stats.points += 1;
+    }
+
+    /// `_grDrawLineStrip` for one segment (window coordinates): two half-pixel-wide
+    /// triangles along the major axis.
+    pub(crate) fn line(&mut self, a: &[f32], b: &[f32]) {
+        self.flush_state();
+        let (pa, pb);
+        let (a, b) = if self.st.coordinate_space == GR_WINDOW_COORDS {
+            (a, b)
+        } else {
+            pa = self.project(a);
+            pb = self.project(b);
+            (pa.as_slice(), pb.as_slice())
+        };
+        let xo = self.layout.xy.offset;
+        let (mut a, mut b) = (a, b);
+        let mut xa = fetch(a, xo) + SNAP_BIAS;
+        let mut xb = fetch(b, xo) + SNAP_BIAS;
+        let mut ya = fetch(a, xo + 4) + SNAP_BIAS;
+        let mut yb = fetch(b, xo + 4) + SNAP_BIAS;
+        let mut ady = yb - ya;
+        if (ady.to_bits() as i32) < 0 {
+            std::mem::swap(&mut a, &mut b);
+            ady = f32::from_bits(ady.to_bits() ^ 0x8000_0000);
+            std::mem::swap(&mut xa, &mut xb);
+            std::mem::swap(&mut ya, &mut yb);
+        }
+        let dx = f32::from_bits((xb - xa).to_bits() & 0x7fff_ffff);
+        self.stats.lines += 1;
+        if dx.to_bits() >= ady.to_bits() {
+            if dx.to_bits() == 0 {
+                return;
+            }
+            let m = 1.0f32 / dx;
+            self.hw.wf(F_VERTEX_AX, xa);
+            self.hw.wf(F_VERTEX_BX, xb);
+            self.hw.wf(F_VERTEX_CX, xb);
+            self.hw.wf(F_VERTEX_AY, ya - 0.5);
+            self.hw.wf(F_VERTEX_BY, yb - 0.5);
+            self.hw.wf(F_VERTEX_CY, yb + 0.5);
+            self.line_params(a, b, m, true);
+            self.hw.wf(F_TRIANGLE_CMD, dx);
+            self.hw.wf(F_VERTEX_BX, xa);
+            self.hw.wf(F_VERTEX_BY, ya + 0.5);
+            self.hw.wf(F_TRIANGLE_CMD, -dx);
+        } else {
+            let m = 1.0f32 / ady;
+            self.hw.wf(F_VERTEX_AY, ya);
+            self.hw.wf(F_VERTEX_BY, yb);
+            self.hw.wf(F_VERTEX_CY, yb);
+            self.hw.wf(F_VERTEX_AX, xa - 0.5);
+            self.hw.wf(F_VERTEX_BX, xb - 0.5);
+            self.hw.wf(F_VERTEX_CX, xb + 0.5);
+            self.line_params(a, b, m, false);
+            self.hw.w(TRIANGLE_CMD, 0xffff_ffff);
+            self.hw.wf(F_VERTEX_BX, xa + 0.5);
+            self.hw.wf(F_VERTEX_BY, ya);
+            self.hw.w(TRIANGLE_CMD, 1);
+        }
+    }
+
+    fn line_params(&mut self, a: &[f32], b: &[f32], m: f32, x_major: bool) {
+        for i in 0..self.data_list.len() {
+            let e = self.data_list[i];
+            let pa = value(a, e);
+            let Some(reg) = self.send_start(e, pa) else {
+                continue;
+            };
+            // Extended-precision difference times the f32 reciprocal, rounded once.
+            let dp = ((f64::from(value(b, e)) - f64::from(pa)) * f64::from(m)) as f32;
+            if x_major {
+                self.hw.wf(reg + DPDX, dp);
+                self.hw.wf(reg + DPDY, 0.0);
+            } else {
+                self.hw.wf(reg + DPDX, 0.0);
+                self.hw.wf(reg + DPDY, dp);
+            }
+        }
+    }
+
+    /// Draw a list of vertices as `GR_POINTS`, `GR_LINES`, `GR_LINE_STRIP`,
+    /// `GR_TRIANGLES`, strips, fans or polygons (`grDrawVertexArray`).
+    pub(crate) fn draw_list(&mut self, mode: u32, v: &[&[f32]]) {
+        let n = v.len();
+        match mode {
+            GR_POINTS => v.iter().for_each(|p| self.point(p)),
+            GR_LINE_STRIP => (1..n).for_each(|i| self.line(v[i - 1], v[i])),
+            GR_LINES => (0..n / 2).for_each(|i| self.line(v[2 * i], v[2 * i + 1])),
+            GR_TRIANGLES => (0..n / 3).for_each(|i| self.triangle(v[3 * i], v[3 * i + 1], v[3 * i + 2])),
+            GR_TRIANGLE_STRIP | GR_TRIANGLE_STRIP_CONTINUE => {
+                let continuing = mode == GR_TRIANGLE_STRIP_CONTINUE && self.strip_tail.is_some();
+                let mut all: Vec<&[f32]> = Vec::with_capacity(n + 2);
+                let tail = self.strip_tail.take();
+                let mut flip = false;
+                if continuing {
+                    if let Some((t0, t1, f)) = tail.as_ref() {
+                        all.push(t0);
+                        all.push(t1);
+                        flip = *f;
+                    }
+                }
+                all.extend_from_slice(v);
+                self.flush_state();
+                for i in 0..all.len().saturating_sub(2) {
+                    if flip {
+                        self.triangle(all[i + 1], all[i], all[i + 2]);
+                    } else {
+                        self.triangle(all[i], all[i + 1], all[i + 2]);
+                    }
+                    flip = !flip;
+                }
+                let k = all.len();
+                if k >= 2 {
+                    self.strip_tail = Some((all[k - 2].to_vec(), all[k - 1].to_vec(), flip));
+                }
+            }
+            GR_TRIANGLE_FAN | GR_POLYGON | GR_TRIANGLE_FAN_CONTINUE => {
+                let continuing = mode == GR_TRIANGLE_FAN_CONTINUE && self.fan_tail.is_some();
+                let tail = self.fan_tail.take();
+                let mut all: Vec<&[f32]> = Vec::with_capacity(n + 2);
+                if continuing {
+                    if let Some((center, last)) = tail.as_ref() {
+                        all.push(center);
+                        all.push(last);
+                    }
+                }
+                all.extend_from_slice(v);
+                self.flush_state();
+                for i in 1..all.len().saturating_sub(1) {
+                    self.triangle(all[0], all[i], all[i + 1]);
+                }
+                if all.len() >= 2 {
+                    self.fan_tail = Some((all[0].to_vec(), all[all.len() - 1].to_vec()));
+                }
+            }
+            _ => {}
+        }
+    }
+}

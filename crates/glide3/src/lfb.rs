@@ -1,0 +1,201 @@
+//! Linear frame buffer access: locks, direct pixel access, region copies.
+//!
+//! Spec sections 4 (LFB address space at 0x400000) and 5 (`lfbMode`, `zaColor`).
+//! Lock and unlock write the same registers as 3dfx's SST-1 Glide 3 (glfb.c): a
+//! write lock loads `zaColor` with the constant depth/alpha, clears depth biasing in
+//! `fbzMode` and selects buffer, format, origin and pixel pipeline in `lfbMode`.
+//! Pixel data then travels as 32-bit aperture writes; the stride is 2048 bytes for
+//! 16-bit formats and 4096 for 32-bit ones.
+
+use crate::consts::*;
+use crate::hw::bits::*;
+use crate::hw::LFB_BASE;
+use sst1_regs::addr::*;
+
+/// What a successful `grLfbLock` reports (`GrLfbInfo_t` without the pointer).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LfbInfo {
+    /// Bytes from one row to the next.
+    pub stride_in_bytes: u32,
+    /// Effective `GR_LFBWRITEMODE_*` (write locks).
+    pub write_mode: u32,
+    /// `GR_ORIGIN_*`.
+    pub origin: u32,
+}
+
+const LFB_WRITE_BACK: u32 = 1 << 4;
+const LFB_WRITEBUF: u32 = 3 << 4;
+const LFB_READBUF: u32 = 3 << 6;
+const LFB_FORMAT: u32 = 0xf;
+
+/// Bytes per pixel slot in the LFB for a write mode (16-bit modes pack two pixels
+/// per word; 32-bit modes use one word per pixel).
+pub(crate) fn stride_for(mode: u32) -> u32 {
+    match mode {
+        GR_LFBWRITEMODE_565 | GR_LFBWRITEMODE_555 | GR_LFBWRITEMODE_1555 | GR_LFBWRITEMODE_ZA16 => 2048,
+        _ => 4096,
+    }
+}
+
+impl crate::Glide {
+    /// `grLfbLock`. `None` when the lock is refused (already locked, bad buffer or
+    /// reserved write mode); the registers are only written for accepted locks.
+    pub(crate) fn lfb_lock_hw(&mut self, ty: u32, buffer: u32, write_mode: u32, origin: u32, pipeline: bool) -> Option<LfbInfo> {
+        self.validate();
+        let ty = ty & !GR_LFB_NOIDLE;
+        let slot = usize::from(ty == GR_LFB_WRITE_ONLY);
+        if self.lfb_locks[slot].is_some() {
+            return None;
+        }
+        let yorigin = if origin != 0 { LFB_YORIGIN } else { 0 };
+        if ty == GR_LFB_READ_ONLY {
+            let sel = match buffer {
+                GR_BUFFER_FRONTBUFFER => 0,
+                GR_BUFFER_BACKBUFFER => 1 << 6,
+                GR_BUFFER_AUXBUFFER => 2 << 6,
+                _ => return None,
+            };
+            let l = (self.st.fbi.lfb_mode & !(LFB_READBUF | LFB_YORIGIN)) | sel | yorigin;
+            self.hw.w(LFB_MODE, l);
+            self.st.fbi.lfb_mode = l;
+            self.lfb_locks[slot] = Some(buffer);
+            return Some(LfbInfo { stride_in_bytes: 2048, write_mode: self.st.fbi.lfb_mode & LFB_FORMAT, origin });
+        }
+        if (3..=11).contains(&write_mode) && write_mode != GR_LFBWRITEMODE_888 && write_mode != GR_LFBWRITEMODE_8888 {
+            return None;
+        }
+        let (sel, mode) = match buffer {
+            GR_BUFFER_FRONTBUFFER | GR_BUFFER_BACKBUFFER => {
+                let m = if write_mode == GR_LFBWRITEMODE_ANY { GR_LFBWRITEMODE_565 } else { write_mode };
+                if m == GR_LFBWRITEMODE_ZA16 {
+                    return None;
+                }
+                (if buffer == GR_BUFFER_BACKBUFFER { LFB_WRITE_BACK } else { 0 }, m)
+            }
+            GR_BUFFER_AUXBUFFER => {
+                let m = if write_mode == GR_LFBWRITEMODE_ANY { GR_LFBWRITEMODE_ZA16 } else { write_mode };
+                if m != GR_LFBWRITEMODE_ZA16 {
+                    return None;
+                }
+                (0, m)
+            }
+            _ => return None,
+        };
+        let za = (self.st.lfb_constant_depth & 0xffff) | (u32::from(self.st.lfb_constant_alpha) << 24);
+        self.hw.w(ZA_COLOR, za);
+        let mut fbz = self.st.fbi.fbz_mode & !ENZBIAS;
+        let mut l = self.st.fbi.lfb_mode & !(LFB_WRITEBUF | LFB_YORIGIN | LFB_FORMAT | LFB_ENPIXPIPE);
+        l |= sel | mode | yorigin;
+        if pipeline {
+            l |= LFB_ENPIXPIPE;
+            fbz = (fbz & !YORIGIN) | if origin != 0 { YORIGIN } else { 0 };
+        }
+        self.hw.w(LFB_MODE, l);
+        self.st.fbi.lfb_mode = l;
+        self.hw.w(FBZ_MODE, fbz);
+        self.lfb_locks[slot] = Some(buffer);
+        Some(LfbInfo { stride_in_bytes: stride_for(mode), write_mode: mode, origin })
+    }
+
+    /// `grLfbUnlock`: restore depth bias and `fbzMode`. False if not locked.
+    pub(crate) fn lfb_unlock_hw(&mut self, ty: u32, buffer: u32) -> bool {
+        let slot = usize::from(ty & !GR_LFB_NOIDLE == GR_LFB_WRITE_ONLY);
+        if self.lfb_locks[slot] != Some(buffer) {
+            return false;
+        }
+        self.hw.w(ZA_COLOR, self.st.fbi.za_color);
+        self.hw.w(FBZ_MODE, self.st.fbi.fbz_mode);
+        self.lfb_locks[slot] = None;
+        true
+    }
+
+    /// `grLfbWriteRegion` for every source format but RLE16. `src` holds
+    /// `height` rows of `stride` bytes.
+    pub(crate) fn lfb_write_region_hw(
+        &mut self,
+        buffer: u32,
+        x: u32,
+        y: u32,
+        format: u32,
+        width: u32,
+        height: u32,
+        pipeline: bool,
+        stride: usize,
+        src: &[u8],
+    ) -> bool {
+        if format == GR_LFB_SRC_FMT_RLE16 {
+            return false;
+        }
+        let Some(info) = self.lfb_lock_hw(GR_LFB_WRITE_ONLY | GR_LFB_NOIDLE, buffer, format, GR_ORIGIN_UPPER_LEFT, pipeline) else {
+            return false;
+        };
+        let byte = |i: usize| u32::from(src.get(i).copied().unwrap_or(0));
+        let half = |i: usize| byte(i) | (byte(i + 1) << 8);
+        let word = |i: usize| half(i) | (half(i + 2) << 16);
+        let row_base = LFB_BASE + y * info.stride_in_bytes;
+        for row in 0..height as usize {
+            let s = row * stride;
+            let dst = row_base + row as u32 * info.stride_in_bytes;
+            if info.stride_in_bytes == 2048 {
+                let mut addr = dst + 2 * x;
+                let mut i = 0usize;
+                let len = 2 * width as usize;
+                if addr & 2 != 0 && len >= 2 {
+                    self.hw.w16(addr, half(s) as u16);
+                    addr += 2;
+                    i = 2;
+                }
+                while i + 4 <= len {
+                    self.hw.w(addr, word(s + i));
+                    addr += 4;
+                    i += 4;
+                }
+                if i + 2 <= len {
+                    self.hw.w16(addr, half(s + i) as u16);
+                }
+            } else {
+                for k in 0..width {
+                    self.hw.w(dst + 4 * (x + k), word(s + 4 * k as usize));
+                }
+            }
+        }
+        self.lfb_unlock_hw(GR_LFB_WRITE_ONLY, buffer);
+        true
+    }
+
+    /// `grLfbReadRegion`: 16-bit pixels of `buffer` into `dst` (`stride` bytes per row).
+    pub(crate) fn lfb_read_region_hw(&mut self, buffer: u32, x: u32, y: u32, width: u32, height: u32, stride: usize, dst: &mut [u8]) -> bool {
+        if self.lfb_lock_hw(GR_LFB_READ_ONLY, buffer, GR_LFBWRITEMODE_ANY, GR_ORIGIN_UPPER_LEFT, false).is_none() {
+            return false;
+        }
+        for row in 0..height {
+            for col in 0..width {
+                let addr = LFB_BASE + (y + row) * 2048 + 2 * (x + col);
+                let w = self.hw.r(addr & !3);
+                let px = if addr & 2 != 0 { w >> 16 } else { w & 0xffff } as u16;
+                let o = row as usize * stride + 2 * col as usize;
+                if let Some(d) = dst.get_mut(o..o + 2) {
+                    d.copy_from_slice(&px.to_le_bytes());
+                }
+            }
+        }
+        self.lfb_unlock_hw(GR_LFB_READ_ONLY, buffer);
+        true
+    }
+
+    /// One 32-bit write into the LFB aperture at byte `offset` (direct access while
+    /// write-locked).
+    pub fn lfb_write32(&mut self, offset: u32, value: u32) {
+        self.hw.w(LFB_BASE + (offset & 0x3f_fffc), value);
+    }
+
+    /// One 16-bit write into the LFB aperture at byte `offset`.
+    pub fn lfb_write16(&mut self, offset: u32, value: u16) {
+        self.hw.w16(LFB_BASE + (offset & 0x3f_fffe), value);
+    }
+
+    /// One 32-bit read from the LFB aperture at byte `offset`.
+    pub fn lfb_read32(&mut self, offset: u32) -> u32 {
+        self.hw.r(LFB_BASE + (offset & 0x3f_fffc))
+    }
+}

@@ -1,0 +1,67 @@
+//! Triangle setup must reproduce 3dfx's SST-1 Glide 3 start and gradient values bit
+//! for bit. test04 (glide3x/sst1/glide3/tests/test04.c) draws one Gouraud triangle:
+//! A = (0.3, 0.3) red, B = (0.8, 0.4) green, C = (0.5, 0.8) blue, scaled to 640x480,
+//! after `grColorCombine(LOCAL, NONE, ITERATED, NONE)` and a black clear.
+
+mod common;
+use common::{assert_prefix, trace, Rec};
+use glide3::consts::*;
+use glide3::{BoardInfo, Glide};
+
+/// A tlib `GrVertex`: x, y, ooz, oow, r, g, b, a, z, then TMU s/t/w triples.
+fn vertex(x: f32, y: f32, r: f32, g: f32, b: f32) -> [f32; 15] {
+    let mut v = [0.0; 15];
+    v[0] = x;
+    v[1] = y;
+    v[4] = r;
+    v[5] = g;
+    v[6] = b;
+    v
+}
+
+#[test]
+fn test04_gouraud_triangle_registers() {
+    let rec = Rec::default();
+    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
+    g.sst_select(0);
+    assert!(g.win_open(GR_RESOLUTION_640x480, GR_REFRESH_60Hz, GR_COLORFORMAT_ABGR, GR_ORIGIN_UPPER_LEFT, 2, 1));
+    let mut w = [0i32; 2];
+    g.get(GR_WDEPTH_MIN_MAX, 8, &mut w);
+    g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
+    g.vertex_layout(GR_PARAM_RGB, 4 << 2, GR_PARAM_ENABLE);
+    g.color_combine(GR_COMBINE_FUNCTION_LOCAL, GR_COMBINE_FACTOR_NONE, GR_COMBINE_LOCAL_ITERATED, GR_COMBINE_OTHER_NONE, false);
+    g.buffer_clear(0, 0, w[1] as u32);
+    let (sx, sy) = (640.0f32, 480.0f32);
+    let a = vertex(0.3 * sx, 0.3 * sy, 255.0, 0.0, 0.0);
+    let b = vertex(0.8 * sx, 0.4 * sy, 0.0, 255.0, 0.0);
+    let c = vertex(0.5 * sx, 0.8 * sy, 0.0, 0.0, 255.0);
+    let before = rec.0.borrow().len();
+    g.draw_triangle(&a, &b, &c);
+    let ours = rec.0.borrow().clone();
+    // 6 vertex coordinates, 3 x (start, d/dx, d/dy), the area.
+    assert_eq!(ours.len() - before, 16);
+    assert_prefix(&ours, &trace("test04"), "test04 triangle");
+    assert_eq!(g.stats().triangles_drawn, 1);
+}
+
+#[test]
+fn culling_and_zero_area() {
+    let rec = Rec::default();
+    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
+    assert!(g.win_open(GR_RESOLUTION_640x480, GR_REFRESH_60Hz, GR_COLORFORMAT_ARGB, GR_ORIGIN_UPPER_LEFT, 2, 1));
+    g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
+    let a = vertex(10.0, 10.0, 0.0, 0.0, 0.0);
+    let b = vertex(100.0, 10.0, 0.0, 0.0, 0.0);
+    let c = vertex(10.0, 100.0, 0.0, 0.0, 0.0);
+    // Screen-space area of (a, b, c) with y down: the sign the chip sees.
+    g.cull_mode(GR_CULL_NEGATIVE);
+    g.draw_triangle(&a, &b, &c);
+    g.draw_triangle(&a, &c, &b);
+    g.cull_mode(GR_CULL_POSITIVE);
+    g.draw_triangle(&a, &b, &c);
+    g.draw_triangle(&a, &c, &b);
+    g.cull_mode(GR_CULL_DISABLE);
+    g.draw_triangle(&a, &a, &c);
+    let s = g.stats();
+    assert_eq!((s.triangles_in, s.triangles_drawn), (5, 2));
+}

@@ -1,0 +1,210 @@
+//! The Pixelfx (FBI) chip: its register file and the commands it executes
+//! (spec 5: register table; 5.22-5.24 commands; 5.36 fogTable; 5.41-5.46 init).
+//!
+//! The board decodes the aperture (chip select, remap, init enable) and calls
+//! [`Fbi::write_reg`] with a normal-map byte offset. Register writes that start work
+//! return a [`Command`], which the board runs with the TMU chain at hand.
+
+use sst1_dither::Dither;
+use sst1_fog::FogTable;
+use sst1_regs::{addr, ColorBuffer, FbiInit1, FbiInit2, FbiInit3, FbzMode, VideoDimensions};
+
+use crate::fb::FrameBuffer;
+use crate::params::TriangleParams;
+use crate::profile::PixelProfile;
+use crate::stats::Stats;
+
+/// Work a register write asks the board to do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Command {
+    /// Nothing beyond storing the value.
+    None,
+    /// `triangleCMD` / `ftriangleCMD`: draw the triangle in the parameter registers.
+    Triangle,
+    /// `fastfillCMD`.
+    Fastfill,
+    /// `swapbufferCMD`.
+    Swap,
+}
+
+/// The Pixelfx chip.
+pub struct Fbi {
+    /// The register file, indexed by normal-map register number (offset / 4).
+    regs: [u32; 256],
+    /// The triangle parameter registers, kept in their fixed-point formats.
+    pub params: TriangleParams,
+    /// Frame-buffer memory and layout.
+    pub fb: FrameBuffer,
+    /// The fog table (spec 5.36).
+    pub fog_table: FogTable,
+    /// Statistics counters.
+    pub stats: Stats,
+    /// The disputed-behaviour switches.
+    profile: PixelProfile,
+    /// Dither tables for the profile's 2x2 matrix.
+    pub(crate) dither: Dither,
+    /// Toggled on each status read so that drivers waiting for retrace make progress.
+    vretrace: bool,
+}
+
+impl Fbi {
+    /// A freshly reset FBI with `fb_mib` MiB (2 or 4) of frame buffer.
+    pub fn new(fb_mib: u32) -> Self {
+        let profile = PixelProfile::default();
+        Self {
+            regs: [0; 256],
+            params: TriangleParams::default(),
+            fb: FrameBuffer::new(fb_mib),
+            fog_table: FogTable::default(),
+            stats: Stats::default(),
+            dither: Dither::new(profile.dither_2x2),
+            profile,
+            vretrace: false,
+        }
+    }
+
+    /// The accuracy profile in force.
+    pub fn profile(&self) -> PixelProfile {
+        self.profile
+    }
+
+    /// Choose the disputed behaviours.
+    pub fn set_profile(&mut self, profile: PixelProfile) {
+        self.profile = profile;
+        self.dither = Dither::new(profile.dither_2x2);
+    }
+
+    /// The raw value of a register (normal-map byte offset).
+    #[inline]
+    pub fn reg(&self, offset: u32) -> u32 {
+        self.regs[addr::index(offset)]
+    }
+
+    /// `fbzMode` as a typed view.
+    #[inline]
+    pub fn fbz_mode(&self) -> FbzMode {
+        FbzMode(self.reg(addr::FBZ_MODE))
+    }
+
+    /// The Y origin subtraction value (`fbiInit3[31:22]`).
+    #[inline]
+    pub fn y_origin(&self) -> i32 {
+        FbiInit3(self.reg(addr::FBI_INIT3)).yorigin_swapval() as i32
+    }
+
+    /// Visible width and height from `videoDimensions` (rounded up to even, as MAME and
+    /// DOSBox Staging do); 640x480 before the driver has set a mode.
+    pub fn display_size(&self) -> (u32, u32) {
+        let v = VideoDimensions(self.reg(addr::VIDEO_DIMENSIONS));
+        if v.0 == 0 {
+            return (640, 480);
+        }
+        ((v.x_width() + 1) & !1, (v.y_height() + 1) & !1)
+    }
+
+    /// A register write. `offset` is a normal-map byte offset; the board has applied
+    /// chip select and the `initEnable` gate for `fbiInit*`.
+    pub fn write_reg(&mut self, offset: u32, value: u32) -> Command {
+        let idx = addr::index(offset);
+        if self.params.write(offset & 0x3fc, value) {
+            return Command::None;
+        }
+        match offset & 0x3fc {
+            addr::TRIANGLE_CMD | addr::F_TRIANGLE_CMD => return Command::Triangle,
+            addr::FASTFILL_CMD => return Command::Fastfill,
+            addr::SWAPBUFFER_CMD => return Command::Swap,
+            addr::NOP_CMD => {
+                if value & 1 != 0 {
+                    self.stats.clear_hardware();
+                }
+            }
+            // Masks of the bits the SST-1 implements (spec 5 register table "Bits").
+            addr::FBZ_COLOR_PATH => self.regs[idx] = value & 0x0fff_ffff,
+            addr::FOG_MODE => self.regs[idx] = value & 0x3f,
+            addr::FBZ_MODE => self.regs[idx] = value & 0x001f_ffff,
+            addr::LFB_MODE => self.regs[idx] = value & 0x0001_ffff,
+            addr::FOG_TABLE..=addr::FOG_TABLE_LAST => {
+                self.fog_table.write(((offset - addr::FOG_TABLE) / 4) as usize, value)
+            }
+            addr::FBI_INIT0 => {
+                self.regs[idx] = value;
+                // Bit 1: FBI graphics reset clears the counters (MAME, DOSBox Staging).
+                if value & 2 != 0 {
+                    self.stats.clear_hardware();
+                }
+                self.recompute_layout();
+            }
+            addr::FBI_INIT1 | addr::FBI_INIT2 | addr::FBI_INIT3 | addr::FBI_INIT4 => {
+                self.regs[idx] = value;
+                self.recompute_layout();
+            }
+            addr::VIDEO_DIMENSIONS => {
+                self.regs[idx] = value;
+                self.recompute_layout();
+            }
+            // Read-only counters and vRetrace: writes are ignored (spec 5 register table).
+            addr::FBI_PIXELS_IN..=addr::FBI_PIXELS_OUT | addr::V_RETRACE => {}
+            _ => self.regs[idx] = value,
+        }
+        Command::None
+    }
+
+    /// A register read (spec 5 register table: reads always come from the FBI).
+    pub fn read_reg(&mut self, offset: u32) -> u32 {
+        const COUNTER_MASK: u64 = 0x00ff_ffff;
+        match offset & 0x3fc {
+            addr::STATUS => {
+                self.vretrace = !self.vretrace;
+                // Idle, both FIFOs empty, no swaps pending (the emulator finishes every
+                // command before the next bus access).
+                0x3f | u32::from(self.vretrace) << 6
+                    | (self.fb.front as u32 & 3) << 10
+                    | 0xffff << 12
+            }
+            addr::FBI_PIXELS_IN => (self.stats.pixels_in & COUNTER_MASK) as u32,
+            addr::FBI_CHROMA_FAIL => (self.stats.chroma_fail & COUNTER_MASK) as u32,
+            addr::FBI_ZFUNC_FAIL => (self.stats.zfunc_fail & COUNTER_MASK) as u32,
+            addr::FBI_AFUNC_FAIL => (self.stats.afunc_fail & COUNTER_MASK) as u32,
+            addr::FBI_PIXELS_OUT => (self.stats.pixels_out & COUNTER_MASK) as u32,
+            addr::V_RETRACE => 0,
+            o => self.regs[addr::index(o)],
+        }
+    }
+
+    /// Derive the frame-buffer layout from the init registers (spec 5.43-5.44).
+    fn recompute_layout(&mut self) {
+        let i1 = FbiInit1(self.reg(addr::FBI_INIT1));
+        let i2 = FbiInit2(self.reg(addr::FBI_INIT2));
+        self.fb.recompute_layout(
+            i1.video_tiles_in_x(),
+            i2.video_buffer_offset(),
+            i2.enable_triple_buffering(),
+        );
+    }
+
+    /// SWAPBUFFER (spec 5.24): swaps are immediate in this emulator.
+    pub fn swap(&mut self) {
+        self.fb.swap();
+        self.stats.swaps += 1;
+    }
+
+    /// Word index of the colour buffer a buffer field selects (reserved values: none).
+    #[inline]
+    pub fn colour_buffer(&self, select: ColorBuffer) -> Option<usize> {
+        match select {
+            ColorBuffer::Front => self.fb.rgb_base(self.fb.front),
+            ColorBuffer::Back => self.fb.rgb_base(self.fb.back),
+            _ => None,
+        }
+    }
+
+    /// Screen row of raster row `y`, after the Y origin flip when `flip` is set.
+    #[inline]
+    pub fn screen_y(&self, y: i32, flip: bool) -> i32 {
+        if flip {
+            (self.y_origin() - y) & 0x3ff
+        } else {
+            y
+        }
+    }
+}

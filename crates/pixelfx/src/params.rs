@@ -1,0 +1,229 @@
+//! Triangle parameters as the FBI holds them: vertices and the start/gradient values of
+//! the iterated colour, depth and W (spec 5.2-5.14).
+//!
+//! Fixed-point formats (spec 5, register table):
+//! * vertices: signed 12.4 ([`Fx12_4`]),
+//! * R, G, B, A: signed 12.12, 24 bits sign-extended ([`Fx12_12`]),
+//! * Z: signed 20.12 ([`Fx20_12`]),
+//! * W: the register is 2.30; internally it is kept with 32 fraction bits in 64 bits
+//!   ([`Fx32_32`]) so that the float registers keep their full precision. MAME and
+//!   DOSBox Staging both widen W this way (fixed writes are shifted left by 2).
+
+use sst1_regs::addr;
+
+/// Signed 12.4 fixed point (vertex coordinates).
+pub type Fx12_4 = i16;
+/// Signed 12.12 fixed point in an `i32` (colour iterators).
+pub type Fx12_12 = i32;
+/// Signed 20.12 fixed point in an `i32` (Z iterator).
+pub type Fx20_12 = i32;
+/// Signed 32.32 fixed point in an `i64` (W iterators, widened from 2.30).
+pub type Fx32_32 = i64;
+
+/// The FBI's triangle parameter registers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TriangleParams {
+    /// Vertex A x, y (12.4).
+    pub ax: Fx12_4,
+    pub ay: Fx12_4,
+    /// Vertex B x, y (12.4).
+    pub bx: Fx12_4,
+    pub by: Fx12_4,
+    /// Vertex C x, y (12.4).
+    pub cx: Fx12_4,
+    pub cy: Fx12_4,
+    /// Iterated colour start and gradients, in R, G, B, A order (12.12).
+    pub start: [Fx12_12; 4],
+    pub dx: [Fx12_12; 4],
+    pub dy: [Fx12_12; 4],
+    /// Iterated Z start and gradients (20.12).
+    pub start_z: Fx20_12,
+    pub dzdx: Fx20_12,
+    pub dzdy: Fx20_12,
+    /// Iterated W start and gradients (32.32).
+    pub start_w: Fx32_32,
+    pub dwdx: Fx32_32,
+    pub dwdy: Fx32_32,
+}
+
+/// Convert an IEEE single to fixed point with `frac_bits` fraction bits, truncating toward
+/// zero and saturating at the `i32` range, as the chip's float registers do.
+///
+/// Source: spec 5.2 (float registers are converted to the fixed formats on write); the
+/// truncation toward zero and saturation follow DOSBox Staging's `float_to_int32`, which
+/// MAME's conversion matches for in-range values.
+pub fn float_to_fixed32(bits: u32, frac_bits: i32) -> i32 {
+    let exp = ((bits >> 23) & 0xff) as i32 - 127 - 23 + frac_bits;
+    let mantissa = ((bits & 0x7f_ffff) | 0x80_0000) as i64;
+    let magnitude = if exp < 0 {
+        if exp <= -31 {
+            0
+        } else {
+            mantissa >> -exp
+        }
+    } else {
+        (mantissa << exp.min(31)).min(i32::MAX as i64)
+    };
+    let v = magnitude as i32;
+    if bits & 0x8000_0000 != 0 {
+        v.wrapping_neg()
+    } else {
+        v
+    }
+}
+
+/// Convert an IEEE single to 64-bit fixed point with `frac_bits` fraction bits
+/// (truncating toward zero, saturating), for the W/S/T float registers.
+pub fn float_to_fixed64(bits: u32, frac_bits: i32) -> i64 {
+    let exp = ((bits >> 23) & 0xff) as i32 - 127 - 23 + frac_bits;
+    let mantissa = ((bits & 0x7f_ffff) | 0x80_0000) as i64;
+    let magnitude = if exp < 0 {
+        if exp <= -64 {
+            0
+        } else {
+            mantissa >> -exp
+        }
+    } else if exp < 40 {
+        mantissa << exp
+    } else {
+        i64::MAX
+    };
+    if bits & 0x8000_0000 != 0 {
+        magnitude.wrapping_neg()
+    } else {
+        magnitude
+    }
+}
+
+/// Sign-extend the low 24 bits (the 12.12 colour registers are 24 bits wide).
+#[inline]
+const fn sext24(v: u32) -> i32 {
+    ((v << 8) as i32) >> 8
+}
+
+impl TriangleParams {
+    /// Apply a write to one of the parameter registers (normal-map byte `offset`,
+    /// 0x008..=0x0fc). `value` is the raw bus word; float registers are converted.
+    /// Returns `false` if `offset` is not an FBI parameter register.
+    pub fn write(&mut self, offset: u32, value: u32) -> bool {
+        // Float registers mirror the fixed ones 0x80 bytes higher (spec 5, register table).
+        let (reg, float) = if (addr::F_VERTEX_AX..=addr::F_D_W_DY).contains(&offset) {
+            (offset - 0x80, true)
+        } else {
+            (offset, false)
+        };
+        let fixed = |frac: i32| if float { float_to_fixed32(value, frac) as u32 } else { value };
+        match reg {
+            addr::VERTEX_AX => self.ax = fixed(4) as i16,
+            addr::VERTEX_AY => self.ay = fixed(4) as i16,
+            addr::VERTEX_BX => self.bx = fixed(4) as i16,
+            addr::VERTEX_BY => self.by = fixed(4) as i16,
+            addr::VERTEX_CX => self.cx = fixed(4) as i16,
+            addr::VERTEX_CY => self.cy = fixed(4) as i16,
+            addr::START_R | addr::START_G | addr::START_B | addr::START_A => {
+                self.start[channel(reg, addr::START_R)] = sext24(fixed(12))
+            }
+            addr::D_R_DX | addr::D_G_DX | addr::D_B_DX | addr::D_A_DX => {
+                self.dx[channel(reg, addr::D_R_DX)] = sext24(fixed(12))
+            }
+            addr::D_R_DY | addr::D_G_DY | addr::D_B_DY | addr::D_A_DY => {
+                self.dy[channel(reg, addr::D_R_DY)] = sext24(fixed(12))
+            }
+            addr::START_Z => self.start_z = fixed(12) as i32,
+            addr::D_Z_DX => self.dzdx = fixed(12) as i32,
+            addr::D_Z_DY => self.dzdy = fixed(12) as i32,
+            addr::START_W | addr::D_W_DX | addr::D_W_DY => {
+                let w = if float {
+                    float_to_fixed64(value, 32)
+                } else {
+                    (value as i32 as i64) << 2
+                };
+                match reg {
+                    addr::START_W => self.start_w = w,
+                    addr::D_W_DX => self.dwdx = w,
+                    _ => self.dwdy = w,
+                }
+            }
+            _ => return false,
+        }
+        true
+    }
+
+    /// Subpixel correction (fbzColorPath bit 26, spec 5.16): move the start values from
+    /// vertex A to the centre of its pixel. The corrected values replace the start
+    /// registers (the spec's "Important Note"), so a second triangle without new starts
+    /// is corrected twice, as on hardware.
+    ///
+    /// Returns the 12.4 offsets `(dx, dy)` so that the TMUs can apply the same correction.
+    pub fn subpixel_adjust(&mut self) -> (i32, i32) {
+        // Source: MAME and DOSBox Staging: offset = 8 - (coordinate & 15), in 1/16 pixel.
+        let dx = 8 - (self.ax as i32 & 15);
+        let dy = 8 - (self.ay as i32 & 15);
+        for i in 0..4 {
+            self.start[i] = self.start[i]
+                .wrapping_add((dy.wrapping_mul(self.dy[i]).wrapping_add(dx.wrapping_mul(self.dx[i]))) >> 4);
+        }
+        // Z uses a 64-bit product so that large gradients do not wrap before the shift.
+        let dz = ((dy as i64 * self.dzdy as i64) >> 4) + ((dx as i64 * self.dzdx as i64) >> 4);
+        self.start_z = self.start_z.wrapping_add(dz as i32);
+        self.start_w = self
+            .start_w
+            .wrapping_add((dy as i64 * self.dwdy).wrapping_add(dx as i64 * self.dwdx) >> 4);
+        (dx, dy)
+    }
+}
+
+/// Index 0..3 (R, G, B, A) of a colour register, given the register and its R sibling.
+#[inline]
+fn channel(reg: u32, first: u32) -> usize {
+    // The spec's order is R, G, B, Z, A: skip the Z slot.
+    match (reg - first) / 4 {
+        0 => 0,
+        1 => 1,
+        2 => 2,
+        _ => 3,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn float_conversion() {
+        assert_eq!(float_to_fixed32(1.5f32.to_bits(), 4), 24);
+        assert_eq!(float_to_fixed32((-1.5f32).to_bits(), 4), -24);
+        assert_eq!(float_to_fixed32(0.0f32.to_bits(), 12), 0);
+        assert_eq!(float_to_fixed32(1e30f32.to_bits(), 12), i32::MAX);
+        assert_eq!(float_to_fixed64(0.5f32.to_bits(), 32), 1 << 31);
+        assert_eq!(float_to_fixed64((-2.0f32).to_bits(), 32), -(2i64 << 32));
+    }
+
+    #[test]
+    fn fixed_and_float_registers() {
+        let mut p = TriangleParams::default();
+        assert!(p.write(addr::START_R, 0x00ff_f000));
+        assert_eq!(p.start[0], -4096);
+        assert!(p.write(addr::START_A, 0x0001_0000));
+        assert_eq!(p.start[3], 0x10000);
+        assert!(p.write(addr::F_D_G_DY, 2.0f32.to_bits()));
+        assert_eq!(p.dy[1], 2 << 12);
+        assert!(p.write(addr::START_W, 0x4000_0000));
+        assert_eq!(p.start_w, 1 << 32);
+        assert!(p.write(addr::F_VERTEX_CY, 10.25f32.to_bits()));
+        assert_eq!(p.cy, 164);
+        assert!(!p.write(addr::FBZ_MODE, 0));
+    }
+
+    #[test]
+    fn subpixel_adjust_writes_back() {
+        let mut p = TriangleParams { ax: 16 * 3 + 4, ay: 16 * 2, ..Default::default() };
+        p.dx[0] = 0x1000;
+        p.dy[0] = 0x2000;
+        assert_eq!(p.subpixel_adjust(), (4, 8));
+        // start += (8 * 0x2000 + 4 * 0x1000) >> 4
+        assert_eq!(p.start[0], 0x1400);
+        p.subpixel_adjust();
+        assert_eq!(p.start[0], 0x2800);
+    }
+}

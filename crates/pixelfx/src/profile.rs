@@ -1,0 +1,41 @@
+//! The accuracy profile: one named switch for every behaviour on which the reference
+//! emulators (MAME, DOSBox Staging, 86Box) disagree. `Default` is the behaviour we
+//! believe the hardware has; docs/accuracy.md lists the evidence for each default.
+
+use serde::{Deserialize, Serialize};
+
+pub use crate::iter::WFloatEdges;
+pub use crate::setup::EdgeRounding;
+pub use sst1_dither::DitherMatrix2x2;
+
+/// Where the right clip edge lies.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum ClipRightEdge {
+    /// Pixels with `x < clipRight` are drawn (spec 5.21: exclusive of clipRight; MAME, 86Box).
+    #[default]
+    Exclusive,
+    /// Also drop the column `clipRight - 1` (DOSBox Staging's off-by-one).
+    DropLastColumn,
+}
+
+/// When a rendered pixel writes the aux (depth/alpha) buffer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum AuxWrite {
+    /// Whenever `fbzMode.aux_buffer_mask` is set (spec 5.19 bit 10; MAME, DOSBox Staging).
+    #[default]
+    MaskOnly,
+    /// Only if depth buffering or alpha planes are also enabled (86Box).
+    MaskAndDepthOrAlphaPlanes,
+}
+
+/// Every disputed behaviour of the Pixelfx, chosen in one place.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub struct PixelProfile {
+    pub edge_rounding: EdgeRounding,
+    pub wfloat: WFloatEdges,
+    pub clip_right: ClipRightEdge,
+    pub aux_write: AuxWrite,
+    pub dither_2x2: DitherMatrix2x2,
+    pub fog: crate::fog::FogProfile,
+    pub blend: crate::blend::BlendProfile,
+}

@@ -1,0 +1,551 @@
+//! End-to-end tests through the public `Tmu` interface.
+
+use super::*;
+
+/// textureMode combine fields that output the local texel unchanged (Glide's "decal").
+const DECAL: u32 = (1 << 12) | (1 << 18) | (1 << 21) | (1 << 27);
+const BILINEAR: u32 = 6;
+const PERSP: u32 = 1;
+const CLAMPW: u32 = 8;
+const CLAMPS: u32 = 0x40;
+const CLAMPT: u32 = 0x80;
+const fn fmt(f: u32) -> u32 {
+    f << 8
+}
+/// tLOD with lodmin = lodmax = `lod` (whole LODs).
+const fn fixed_lod(lod: u32) -> u32 {
+    (lod * 4) | (lod * 4) << 6
+}
+const BLACK: Rgba = Rgba {
+    r: 0,
+    g: 0,
+    b: 0,
+    a: 0,
+};
+const WHITE: Rgba = Rgba {
+    r: 255,
+    g: 255,
+    b: 255,
+    a: 255,
+};
+
+fn rgba(v: [u8; 4]) -> Rgba {
+    Rgba {
+        r: v[0],
+        g: v[1],
+        b: v[2],
+        a: v[3],
+    }
+}
+
+/// Download address of 16-bit texels (s, s+1) of a LOD.
+fn addr16(lod: u32, s: u32, t: u32) -> u32 {
+    (lod << 17) | (t << 9) | ((s >> 1) << 2)
+}
+
+/// Sets S/T iterators (in LOD-0 texels, 14.18) and W (2.30).
+fn set_iter(tmu: &mut Tmu, s: i32, t: i32, dsdx: i32, dtdy: i32, w: i32) {
+    tmu.write_reg(addr::START_S, s as u32);
+    tmu.write_reg(addr::START_T, t as u32);
+    tmu.write_reg(addr::START_W, w as u32);
+    tmu.write_reg(addr::D_S_DX, dsdx as u32);
+    tmu.write_reg(addr::D_T_DX, 0);
+    tmu.write_reg(addr::D_W_DX, 0);
+    tmu.write_reg(addr::D_S_DY, 0);
+    tmu.write_reg(addr::D_T_DY, dtdy as u32);
+    tmu.write_reg(addr::D_W_DY, 0);
+}
+
+const ONE_W: i32 = 1 << 30;
+const fn tex(v: i32) -> i32 {
+    v << 18
+}
+
+/// An 8x8 RGB565 texture stored as LOD 5 of a square chain at address 0, with
+/// (2,2) blue, (3,2) red, (4,2) green, (0,2) green, (6,2)/(7,2) white.
+fn rgb565_8x8(mode_extra: u32) -> Tmu {
+    let mut tmu = Tmu::new(0, 2 << 20);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(10) | DECAL | mode_extra);
+    tmu.write_reg(addr::T_LOD, fixed_lod(5));
+    tmu.write_reg(addr::TEX_BASE_ADDR, 0);
+    tmu.write_texture(addr16(5, 2, 2), 0xf800_001f);
+    tmu.write_texture(addr16(5, 4, 2), 0x0000_07e0);
+    tmu.write_texture(addr16(5, 0, 2), 0x0000_07e0);
+    tmu.write_texture(addr16(5, 6, 2), 0xffff_ffff);
+    // centre of texel (3, 2) of LOD 5 (32 LOD-0 texels each), one texel per pixel in X
+    set_iter(
+        &mut tmu,
+        tex(3 * 32 + 16),
+        tex(2 * 32 + 16),
+        tex(32),
+        tex(32),
+        ONE_W,
+    );
+    tmu.begin_triangle();
+    tmu
+}
+
+const RED: Rgba = Rgba {
+    r: 255,
+    g: 0,
+    b: 0,
+    a: 255,
+};
+const GREEN: Rgba = Rgba {
+    r: 0,
+    g: 255,
+    b: 0,
+    a: 255,
+};
+const BLUE: Rgba = Rgba {
+    r: 0,
+    g: 0,
+    b: 255,
+    a: 255,
+};
+const OPAQUE_BLACK: Rgba = Rgba {
+    r: 0,
+    g: 0,
+    b: 0,
+    a: 255,
+};
+
+#[test]
+fn point_sampling_and_wrap() {
+    let mut tmu = rgb565_8x8(0);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), BLUE);
+    assert_eq!(tmu.texel(1, 0, 0, 0, BLACK), GREEN);
+    assert_eq!(tmu.texel(2, 0, 0, 0, BLACK), OPAQUE_BLACK);
+    // s = 8 wraps to 0
+    assert_eq!(tmu.texel(5, 0, 0, 0, BLACK), GREEN);
+    // t = 10 wraps to 2
+    assert_eq!(tmu.texel(0, 8, 0, 0, BLACK), RED);
+}
+
+#[test]
+fn point_sampling_clamp() {
+    let mut tmu = rgb565_8x8(CLAMPS | CLAMPT);
+    assert_eq!(tmu.texel(5, 0, 0, 0, BLACK), WHITE);
+    assert_eq!(tmu.texel(-9, 0, 0, 0, BLACK), GREEN);
+    // t clamps to 7: an empty row
+    assert_eq!(tmu.texel(0, 8, 0, 0, BLACK), OPAQUE_BLACK);
+}
+
+#[test]
+fn bilinear_four_bit_weights() {
+    let mut tmu = rgb565_8x8(BILINEAR);
+    // S = texel 3 centre + 9/32 of a LOD-5 texel: s fraction 0x48 -> 4-bit weight 4/16
+    tmu.write_reg(addr::START_S, tex(3 * 32 + 16 + 9) as u32);
+    tmu.begin_triangle();
+    let c = tmu.texel(0, 0, 0, 0, BLACK);
+    assert_eq!(
+        c,
+        Rgba {
+            r: (255 * 12 * 16 / 256) as u8,
+            g: (255 * 4 * 16 / 256) as u8,
+            b: 0,
+            a: 255
+        }
+    );
+    // 8-bit weights (Voodoo 2 precision) see the full 0x48
+    tmu.set_profile(TexelProfile {
+        bilinear: BilinearPrecision::Bits8,
+        ..Default::default()
+    });
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 183,
+            g: 71,
+            b: 0,
+            a: 255
+        }
+    );
+}
+
+#[test]
+fn bilinear_blends_in_t_and_clamps() {
+    let mut tmu = rgb565_8x8(BILINEAR | CLAMPS);
+    // half-way between rows 2 and 3 at texel 7's centre: (7, 2) is white and row 3 is
+    // zero memory (RGB565 black, alpha ff)
+    tmu.write_reg(addr::START_S, tex(7 * 32 + 16) as u32);
+    tmu.write_reg(addr::START_T, tex(3 * 32) as u32);
+    tmu.begin_triangle();
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 127,
+            g: 127,
+            b: 127,
+            a: 255
+        }
+    );
+    // beyond the right edge both neighbours clamp to texel 7
+    assert_eq!(
+        tmu.texel(3, 0, 0, 0, BLACK),
+        Rgba {
+            r: 127,
+            g: 127,
+            b: 127,
+            a: 255
+        }
+    );
+}
+
+#[test]
+fn perspective_divide_and_tclampw() {
+    let mut tmu = rgb565_8x8(PERSP);
+    // S/W and T/W with W = 0.5
+    set_iter(
+        &mut tmu,
+        tex((3 * 32 + 16) / 2),
+        tex((2 * 32 + 16) / 2),
+        tex(16),
+        tex(16),
+        1 << 29,
+    );
+    tmu.begin_triangle();
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), BLUE);
+    // negative W: coordinates flip sign (wrap) unless tclampw forces them to 0
+    tmu.write_reg(addr::START_W, (-(1i32 << 29)) as u32);
+    tmu.write_reg(addr::START_S, tex(-(2 * 32 + 16) / 2) as u32);
+    tmu.write_reg(addr::START_T, tex(-(2 * 32 + 16) / 2) as u32);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), BLUE);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(10) | DECAL | PERSP | CLAMPW);
+    tmu.write_texture(addr16(5, 0, 0), 0x0000_f800);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+}
+
+#[test]
+fn download_8bit_both_address_forms() {
+    let mut tmu = Tmu::new(0, 4 << 20);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(3));
+    tmu.write_reg(addr::T_LOD, fixed_lod(5));
+    // LOD 5 of an 8-bit square chain at 0: 0x10000 + 0x4000 + 0x1000 + 0x400 + 0x100
+    let lod5 = 0x15500;
+    // seq_8_downld = 0: S[7:2] at address bits 8:3 (bit 2 ignored)
+    tmu.write_texture((5 << 17) | (3 << 9) | (4 << 1) | 4, 0x4433_2211);
+    assert_eq!(
+        &tmu.memory()[lod5 + 24..lod5 + 32],
+        &[0, 0, 0, 0, 0x11, 0x22, 0x33, 0x44]
+    );
+    // seq_8_downld = 1: S[7:2] at address bits 7:2
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(3) | 0x8000_0000);
+    tmu.write_texture((5 << 17) | (4 << 9) | 4, 0x8877_6655);
+    assert_eq!(
+        &tmu.memory()[lod5 + 32..lod5 + 40],
+        &[0, 0, 0, 0, 0x55, 0x66, 0x77, 0x88]
+    );
+}
+
+#[test]
+fn download_narrow_maps_inhibit_upper_texels() {
+    let mut tmu = Tmu::new(0, 4 << 20);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(10));
+    // 16-bit 1x1 (LOD 8) at 0x2aaa8: only the low half is written
+    tmu.write_texture(8 << 17, 0xbbbb_aaaa);
+    assert_eq!(&tmu.memory()[0x2aaa8..0x2aaac], &[0xaa, 0xaa, 0, 0]);
+    // 8-bit 2x2 (LOD 7) at 0x15550: row 1 gets two bytes only
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(3));
+    tmu.write_texture((7 << 17) | (1 << 9), 0x4433_2211);
+    assert_eq!(&tmu.memory()[0x15550..0x15555], &[0, 0, 0x11, 0x22, 0]);
+}
+
+#[test]
+fn download_swizzle_and_swap() {
+    let mut tmu = Tmu::new(0, 1 << 20);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(10));
+    tmu.write_reg(addr::T_LOD, 1 << 25);
+    tmu.write_texture(0, 0x1122_3344);
+    assert_eq!(&tmu.memory()[0..4], &[0x11, 0x22, 0x33, 0x44]);
+    tmu.write_reg(addr::T_LOD, 1 << 26);
+    tmu.write_texture(0, 0x1122_3344);
+    assert_eq!(&tmu.memory()[0..4], &[0x22, 0x11, 0x44, 0x33]);
+    tmu.write_reg(addr::T_LOD, 3 << 25);
+    tmu.write_texture(0, 0x1122_3344);
+    assert_eq!(&tmu.memory()[0..4], &[0x33, 0x44, 0x11, 0x22]);
+    // LOD above 8 is ignored
+    tmu.write_texture(9 << 17, 0xffff_ffff);
+    assert!(tmu.memory().iter().skip(4).all(|&b| b == 0));
+}
+
+#[test]
+fn download_multibase_lod1() {
+    let mut tmu = Tmu::new(0, 4 << 20);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(10));
+    tmu.write_reg(addr::T_LOD, 1 << 24);
+    tmu.write_reg(addr::TEX_BASE_ADDR_1, 0x8000);
+    tmu.write_texture(addr16(1, 2, 1), 0x1234_5678);
+    // LOD 1 is 128 wide: texel (2, 1) at 0x40000 + (128 + 2) * 2
+    assert_eq!(&tmu.memory()[0x40104..0x40108], &[0x78, 0x56, 0x34, 0x12]);
+}
+
+/// A square AI88 mipmap chain whose texel (0, 0) of LOD n has intensity n * 20.
+fn mip_chain(t_lod: u32) -> Tmu {
+    let mut tmu = Tmu::new(0, 4 << 20);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(13) | DECAL);
+    tmu.write_reg(addr::T_LOD, t_lod);
+    for lod in 0..=8 {
+        tmu.write_texture(addr16(lod, 0, 0), 0xff00 | (lod * 20));
+    }
+    tmu
+}
+
+fn at_gradient(tmu: &mut Tmu, log2: u32) -> u8 {
+    set_iter(tmu, 0, 0, tex(1 << log2), tex(1 << log2), ONE_W);
+    tmu.begin_triangle();
+    tmu.texel(0, 0, 0, 0, BLACK).r
+}
+
+#[test]
+fn lod_from_gradients_bias_and_clamp() {
+    let mut tmu = mip_chain(0x20 << 6);
+    for k in 0..=8 {
+        assert_eq!(at_gradient(&mut tmu, k), (k * 20) as u8, "LOD {k}");
+    }
+    // bias +1.0 (4.2 signed: 4), capped at 8
+    tmu.write_reg(addr::T_LOD, (0x20 << 6) | (4 << 12));
+    assert_eq!(at_gradient(&mut tmu, 2), 60);
+    assert_eq!(at_gradient(&mut tmu, 8), 160);
+    // lodmin 3, lodmax 5
+    tmu.write_reg(addr::T_LOD, 12 | (20 << 6));
+    assert_eq!(at_gradient(&mut tmu, 0), 60);
+    assert_eq!(at_gradient(&mut tmu, 7), 100);
+}
+
+#[test]
+fn lod_dither_adds_matrix_sixteenths() {
+    // LOD 1.5 via bias 0.5: dither at (0, 0) adds 0, at (1, 0) adds 8/16 -> LOD 2
+    let mut tmu = mip_chain((0x20 << 6) | (2 << 12));
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(13) | DECAL | 0x10);
+    set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W);
+    tmu.begin_triangle();
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK).r, 20);
+    assert_eq!(tmu.texel(0, 0, 1, 0, BLACK).r, 40);
+    tmu.set_profile(TexelProfile {
+        lod_dither: LodDither::Off,
+        ..Default::default()
+    });
+    assert_eq!(tmu.texel(0, 0, 1, 0, BLACK).r, 20);
+}
+
+#[test]
+fn split_odd_texture_takes_next_level() {
+    // odd levels only: LOD 2.0 reads LOD 3
+    let mut tmu = mip_chain((0x20 << 6) | (1 << 19) | (1 << 18));
+    assert_eq!(at_gradient(&mut tmu, 2), 60);
+    assert_eq!(at_gradient(&mut tmu, 3), 60);
+    assert_eq!(at_gradient(&mut tmu, 0), 20);
+}
+
+#[test]
+fn trilinear_reverses_blend_on_odd_lods() {
+    // combine: c_other * (~lodfrac + 1) >> 8; the local texel is unused
+    let mode = fmt(13) | (5 << 14) | (5 << 23) | (1 << 30);
+    let mut tmu = mip_chain((0x20 << 6) | (2 << 12));
+    tmu.write_reg(addr::TEXTURE_MODE, mode);
+    set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W); // LOD 1.5, odd
+    tmu.begin_triangle();
+    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 128);
+    set_iter(&mut tmu, 0, 0, tex(4), tex(4), ONE_W); // LOD 2.5, even
+    tmu.begin_triangle();
+    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 127);
+    // without the trilinear bit, or with the MAME/DOSBox profile, odd LODs blend normally
+    set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W);
+    tmu.begin_triangle();
+    tmu.set_profile(TexelProfile {
+        trilinear: Trilinear::Ignored,
+        ..Default::default()
+    });
+    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 127);
+    tmu.set_profile(TexelProfile::default());
+    tmu.write_reg(addr::TEXTURE_MODE, mode & !(1 << 30));
+    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 127);
+}
+
+#[test]
+fn lod_zerofrac_profile() {
+    let mode = fmt(13) | (5 << 14) | (5 << 23) | (1 << 17) | (1 << 26);
+    // LOD 1.5, reversed blend by the LOD fraction: 255 * 0x81 >> 8
+    let mut tmu = mip_chain((0x20 << 6) | (2 << 12) | (1 << 23));
+    tmu.write_reg(addr::TEXTURE_MODE, mode);
+    set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W);
+    tmu.begin_triangle();
+    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 128);
+    tmu.set_profile(TexelProfile {
+        lod_zerofrac: LodZeroFrac::Spec,
+        ..Default::default()
+    });
+    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 0);
+}
+
+/// An 8-bit texture of one texel at LOD 8 with raw value `raw`, format `f`.
+fn one_texel(f: u32, raw: u8) -> Tmu {
+    let mut tmu = Tmu::new(0, 1 << 20);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(f) | DECAL);
+    tmu.write_reg(addr::T_LOD, fixed_lod(8));
+    tmu.write_texture(8 << 17, u32::from(raw));
+    set_iter(&mut tmu, 0, 0, tex(1), tex(1), ONE_W);
+    tmu.begin_triangle();
+    tmu
+}
+
+#[test]
+fn ncc_tables_through_registers() {
+    let mut tmu = one_texel(1, 0x12); // y = 1, i = 0, q = 2
+    tmu.write_reg(addr::NCC_TABLE1, 0x0000_5000); // Y1 = 0x50
+    tmu.write_reg(addr::NCC_TABLE1 + 4 * 4, (10 << 18) | (20 << 9) | 30); // I0
+    tmu.write_reg(addr::NCC_TABLE1 + 10 * 4, (0x1ff << 18) | (0x1fe << 9) | 1); // Q2 -1,-2,+1
+                                                                                // table 0 is still selected and empty
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), OPAQUE_BLACK);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(1) | DECAL | 0x20);
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 0x59,
+            g: 0x62,
+            b: 0x6f,
+            a: 0xff
+        }
+    );
+    // AYIQ8422 takes alpha from the high byte
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(9) | DECAL | 0x20);
+    tmu.write_texture(8 << 17, 0x0000_c012);
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 0x59,
+            g: 0x62,
+            b: 0x6f,
+            a: 0xc0
+        }
+    );
+}
+
+#[test]
+fn ncc_update_deferred_profile() {
+    let mut tmu = one_texel(1, 0x10);
+    tmu.set_profile(TexelProfile {
+        ncc_update: NccUpdate::OnTextureRegWrite,
+        ..Default::default()
+    });
+    tmu.write_reg(addr::NCC_TABLE0, 0x0000_7700);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), OPAQUE_BLACK);
+    tmu.write_reg(addr::T_DETAIL, 0);
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 0x77,
+            g: 0x77,
+            b: 0x77,
+            a: 0xff
+        }
+    );
+}
+
+#[test]
+fn palette_writes_through_ncc0_iq() {
+    let mut tmu = one_texel(5, 7);
+    // I3 (odd word): entry {3, 1} = 7; the NCC table is not written
+    tmu.write_reg(addr::NCC_TABLE0 + 7 * 4, 0x8312_3456);
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 0x12,
+            g: 0x34,
+            b: 0x56,
+            a: 0xff
+        }
+    );
+    assert_eq!(tmu.ncc_regs[0][7], 0);
+    // the same value on table 1 is an NCC write
+    tmu.write_reg(addr::NCC_TABLE1 + 7 * 4, 0x8312_3456);
+    assert_eq!(tmu.ncc_regs[1][7], 0x8312_3456);
+    // AP88
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(14) | DECAL);
+    tmu.write_texture(8 << 17, 0x0000_4007);
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 0x12,
+            g: 0x34,
+            b: 0x56,
+            a: 0x40
+        }
+    );
+}
+
+#[test]
+fn eight_bit_formats_through_the_pipeline() {
+    assert_eq!(one_texel(2, 0x5a).texel(0, 0, 0, 0, BLACK), rgba([0x5a; 4]));
+    assert_eq!(
+        one_texel(3, 0x5a).texel(0, 0, 0, 0, BLACK),
+        rgba([0x5a, 0x5a, 0x5a, 0xff])
+    );
+    assert_eq!(
+        one_texel(4, 0x5a).texel(0, 0, 0, 0, BLACK),
+        rgba([0xaa, 0xaa, 0xaa, 0x55])
+    );
+    assert_eq!(
+        one_texel(0, 0xe0).texel(0, 0, 0, 0, BLACK),
+        rgba([0xff, 0, 0, 0xff])
+    );
+}
+
+#[test]
+fn subpixel_adjust_writes_back() {
+    let mut tmu = Tmu::new(0, 1 << 20);
+    tmu.write_reg(addr::START_S, 0);
+    tmu.write_reg(addr::D_S_DX, tex(1) as u32);
+    tmu.write_reg(addr::D_S_DY, tex(2) as u32);
+    tmu.write_reg(addr::START_W, ONE_W as u32);
+    tmu.write_reg(addr::D_W_DX, (1 << 26) as u32);
+    // dx = 0.5, dy = 0.25 (12.4)
+    tmu.subpixel_adjust(8, 4);
+    assert_eq!(tmu.start[0], 1 << 32);
+    assert_eq!(tmu.start[2], (1 << 32) + (1 << 27));
+    tmu.subpixel_adjust(8, 4);
+    assert_eq!(tmu.start[0], 2 << 32);
+}
+
+#[test]
+fn float_registers_keep_32_fraction_bits() {
+    let mut tmu = Tmu::new(0, 1 << 20);
+    tmu.write_reg(addr::F_START_S, 1.5f32.to_bits());
+    tmu.write_reg(addr::F_START_T, (-0.25f32).to_bits());
+    tmu.write_reg(addr::F_START_W, 0.0f32.to_bits());
+    tmu.write_reg(addr::F_D_S_DX, (1.0f32 / 3.0).to_bits());
+    tmu.write_reg(addr::F_D_W_DY, 2.0f32.to_bits());
+    assert_eq!(tmu.start, [3 << 31, -(1 << 30), 0]);
+    // 1/3 as a float is 0xaaaaab / 2^25: 0x5555_5580 in .32
+    assert_eq!(tmu.ddx[0], 0x5555_5580);
+    assert_eq!(tmu.ddy[2], 2 << 32);
+    // the fixed registers: 14.18 and 2.30
+    tmu.write_reg(addr::START_S, (-3i32 << 17) as u32);
+    tmu.write_reg(addr::D_W_DX, (1 << 29) as u32);
+    assert_eq!(tmu.start[0], -3 << 31);
+    assert_eq!(tmu.ddx[2], 1 << 31);
+}
+
+#[test]
+fn odd_memory_sizes_round_up() {
+    assert_eq!(Tmu::new(1, 3 << 20).memory().len(), 4 << 20);
+    assert_eq!(Tmu::new(2, 0).memory().len(), 1 << 20);
+    assert_eq!(Tmu::new(2, 64 << 20).memory().len(), 4 << 20);
+}
+
+#[test]
+fn other_tmu_passes_through_combine() {
+    // textureMode 0: c_other passes unchanged (factor 0xff + 1)
+    let mut tmu = one_texel(3, 0x10);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(3));
+    let c = Rgba {
+        r: 1,
+        g: 2,
+        b: 3,
+        a: 4,
+    };
+    assert_eq!(tmu.texel(0, 0, 0, 0, c), c);
+}

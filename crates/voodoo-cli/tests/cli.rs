@@ -1,0 +1,171 @@
+//! The `voodoo` command, run as a user would.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn voodoo(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_voodoo"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+fn stdout(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout.clone()).unwrap()
+}
+
+/// A fresh scratch folder for one test.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("voodoo-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+const SMALL: &str = "# a comment\n\
+                     config tmus 2\n\
+                     pci 0x40 0x3\n\
+                     w 0x000124 0\n\
+                     w 0x000080 0\n\
+                     w 0x000500 0\n\
+                     w 0x000128 1\n\
+                     w 0x400000 0x12345678\n\
+                     w 0x400000 0x12345678\n\
+                     dump front small_front.raw\n";
+
+#[test]
+fn demo_writes_a_png() {
+    let dir = scratch("demo");
+    let out = stdout(&voodoo(&dir, &["demo"]));
+    assert_eq!(
+        out,
+        "wrote voodoo-demo.png (640x480): Gouraud-shaded triangles, 4x4 dither\n"
+    );
+    let image = image::open(dir.join("voodoo-demo.png")).unwrap();
+    assert_eq!((image.width(), image.height()), (640, 480));
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn info_summarises() {
+    let dir = scratch("info");
+    std::fs::write(dir.join("small.trace"), SMALL).unwrap();
+    let out = stdout(&voodoo(&dir, &["info", "small.trace"]));
+    assert_eq!(
+        out,
+        "board: fbi_mb 4, tmus 2, tmu_mb 4\n\
+         ops: 9 (6 writes, 0 reads, 1 pci, 1 dumps)\n\
+         writes: 4 register, 2 frame buffer, 0 texture\n\
+         triangles: 2, fastfills: 1, swaps: 1\n\
+         dump front small_front.raw\n\
+         registers written:\n  \
+         0x080 triangleCMD      1\n  \
+         0x100 ftriangleCMD     1\n  \
+         0x124 fastfillCMD      1\n  \
+         0x128 swapbufferCMD    1\n"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn replay_writes_dumps_png_and_stats() {
+    let dir = scratch("replay");
+    std::fs::write(dir.join("small.trace"), SMALL).unwrap();
+    let out = stdout(&voodoo(
+        &dir,
+        &[
+            "replay",
+            "small.trace",
+            "--out",
+            "dumps",
+            "--png",
+            "f.png",
+            "--stats-json",
+            "s.json",
+        ],
+    ));
+    assert_eq!(out, "wrote dumps/small_front.raw\nwrote f.png (640x480)\n");
+    assert_eq!(
+        std::fs::read(dir.join("dumps/small_front.raw"))
+            .unwrap()
+            .len(),
+        640 * 480 * 2
+    );
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("s.json")).unwrap()).unwrap();
+    assert_eq!(stats["triangles"], 2);
+    assert_eq!(stats["fastfills"], 1);
+    assert_eq!(stats["swaps"], 1);
+    for counter in [
+        "pixels_in",
+        "chroma_fail",
+        "zfunc_fail",
+        "afunc_fail",
+        "pixels_out",
+    ] {
+        assert!(stats[counter].is_u64(), "{counter}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn convert_round_trips() {
+    let dir = scratch("convert");
+    std::fs::write(dir.join("small.trace"), SMALL).unwrap();
+    stdout(&voodoo(&dir, &["convert", "small.trace", "b.vtrace"]));
+    stdout(&voodoo(&dir, &["convert", "b.vtrace", "c.vtrace.gz"]));
+    stdout(&voodoo(&dir, &["convert", "c.vtrace.gz", "d.trace.gz"]));
+    let out = stdout(&voodoo(&dir, &["convert", "d.trace.gz", "e.trace"]));
+    assert_eq!(out, "wrote e.trace (9 ops)\n");
+    assert_eq!(
+        &std::fs::read(dir.join("b.vtrace")).unwrap()[..8],
+        b"SST1TRCB"
+    );
+    assert_eq!(
+        &std::fs::read(dir.join("c.vtrace.gz")).unwrap()[..2],
+        [0x1f, 0x8b]
+    );
+    let text = std::fs::read_to_string(dir.join("e.trace")).unwrap();
+    assert_eq!(
+        text,
+        "config tmus 2\npci 0x40 0x00000003\nw 0x000124 0x00000000\nw 0x000080 0x00000000\n\
+         w 0x000500 0x00000000\nw 0x000128 0x00000001\nw 0x400000 0x12345678\n\
+         w 0x400000 0x12345678\ndump front small_front.raw\n"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn reg_decodes_by_name_or_offset() {
+    let dir = std::env::temp_dir();
+    let by_name = stdout(&voodoo(&dir, &["reg", "fbzMode", "0x4701"]));
+    let by_offset = stdout(&voodoo(&dir, &["reg", "0x110", "18177"]));
+    assert_eq!(by_name, by_offset);
+    assert!(by_name.starts_with("0x110 fbzMode = "), "{by_name}");
+
+    let unknown = voodoo(&dir, &["reg", "noSuchReg", "1"]);
+    assert!(!unknown.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&unknown.stderr),
+        "voodoo: no register named `noSuchReg`\n"
+    );
+}
+
+#[test]
+fn bad_trace_reports_file_and_line() {
+    let dir = scratch("bad");
+    std::fs::write(dir.join("bad.trace"), "w 0 0\nw 0x2 0\n").unwrap();
+    let out = voodoo(&dir, &["info", "bad.trace"]);
+    assert!(!out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "voodoo: bad.trace:2: expected a 4-aligned aperture offset below 0x1000000, found `0x2`\n"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
