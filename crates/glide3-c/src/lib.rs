@@ -1,1 +1,897 @@
-//! C ABI for Glide 3 (in progress)
+//! libglide3: the Glide 3 C ABI over the emulated SST-1.
+//!
+//! Every `gr*`/`gu*` function of the Glide 3.0 API (Glide 3.0 Programming Guide,
+//! shared/seeds/001) is exported under its Glide name with the C calling convention;
+//! `include/glide.h` declares them. Calls are forwarded to the `glide3` crate, which
+//! writes the registers of an emulated `sst1_board::Board`.
+//!
+//! Environment:
+//! * `VOODOO_PNG=path`: save the front buffer as PNG after buffer swaps.
+//!   `VOODOO_PNG_SWAPS=1,3` picks the swaps (1-based); without it every swap
+//!   overwrites the file. With more than one swap listed, `_swapN` is inserted
+//!   before the extension.
+//! * `VOODOO_TRACE=path`: record the whole run in the text trace format
+//!   (shared/docs/trace-text-format.md).
+//!
+//! Headless: there is no window; the board is the only output.
+
+#![allow(clippy::missing_safety_doc)]
+// Glide spells constants in mixed case; we keep the SDK spelling.
+#![allow(non_upper_case_globals, non_snake_case)]
+
+use glide::consts::*;
+use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
+use sst1_board::{Board, BoardConfig, BufferKind};
+use sst1_regs::RegisterBus;
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::ffi::{c_char, c_int, c_void, CStr, CString};
+use std::io::Write;
+use std::rc::Rc;
+
+/// `FxBool`.
+pub type FxBool = c_int;
+/// `GrErrorCallbackFnc_t`.
+pub type ErrorFn = Option<unsafe extern "C" fn(*const c_char, FxBool)>;
+
+/// The bus Glide writes: the shared board, optionally tee'd into a trace file.
+struct Bus {
+    board: Rc<RefCell<Board>>,
+    trace: Option<Rc<RefCell<std::io::BufWriter<std::fs::File>>>>,
+}
+
+impl RegisterBus for Bus {
+    fn write32(&mut self, addr: u32, value: u32) {
+        if let Some(t) = &self.trace {
+            let _ = writeln!(t.borrow_mut(), "w {addr:#08x} {value:#010x}");
+        }
+        self.board.borrow_mut().write32(addr, value);
+    }
+    fn read32(&mut self, addr: u32) -> u32 {
+        self.board.borrow_mut().read32(addr)
+    }
+    fn pci_write(&mut self, offset: u32, value: u32) {
+        if let Some(t) = &self.trace {
+            let _ = writeln!(t.borrow_mut(), "pci {offset:#04x} {value:#010x}");
+        }
+        self.board.borrow_mut().pci_write(offset, value);
+    }
+}
+
+/// Host-side stand-in for the mapped LFB while a lock is held.
+struct LfbShadow {
+    words: Vec<u32>,
+    initial: Vec<u32>,
+    write: bool,
+}
+
+/// Everything one process's Glide session holds.
+struct Ctx {
+    glide: Glide,
+    board: Rc<RefCell<Board>>,
+    trace: Option<Rc<RefCell<std::io::BufWriter<std::fs::File>>>>,
+    states: HashMap<usize, GlideState>,
+    layouts: HashMap<usize, VertexLayout>,
+    lfb: [Option<LfbShadow>; 2],
+    png: Option<(String, Option<Vec<u32>>)>,
+}
+
+thread_local! {
+    static CTX: RefCell<Option<Ctx>> = const { RefCell::new(None) };
+}
+
+/// Words in the LFB shadow: 1024 rows of 4096 bytes.
+const LFB_WORDS: usize = 1024 * 1024;
+
+fn with<R: Default>(f: impl FnOnce(&mut Ctx) -> R) -> R {
+    CTX.with(|c| c.borrow_mut().as_mut().map(f).unwrap_or_default())
+}
+
+fn board_config() -> BoardConfig {
+    let env = |k: &str, d: u32| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
+    BoardConfig { fbi_mb: env("VOODOO_FBI_MB", 4), tmus: env("VOODOO_TMUS", 1), tmu_mb: env("VOODOO_TMU_MB", 4) }
+}
+
+fn open_trace(cfg: &BoardConfig) -> Option<Rc<RefCell<std::io::BufWriter<std::fs::File>>>> {
+    // HOOK: replace with sst1_trace::Recorder once that crate's recorder lands; this
+    // writes the same text format directly.
+    let path = std::env::var("VOODOO_TRACE").ok()?;
+    let f = std::fs::File::create(path).ok()?;
+    let mut w = std::io::BufWriter::new(f);
+    let _ = writeln!(w, "# Glide 3 (voodoo-rs glide3) register trace");
+    let _ = writeln!(w, "config fbi_mb {}\nconfig tmus {}\nconfig tmu_mb {}", cfg.fbi_mb, cfg.tmus, cfg.tmu_mb);
+    Some(Rc::new(RefCell::new(w)))
+}
+
+fn png_setting() -> Option<(String, Option<Vec<u32>>)> {
+    let path = std::env::var("VOODOO_PNG").ok()?;
+    let swaps = std::env::var("VOODOO_PNG_SWAPS")
+        .ok()
+        .map(|s| s.split(',').filter_map(|n| n.trim().parse().ok()).collect());
+    Some((path, swaps))
+}
+
+/// Save the front buffer as RGB PNG (RGB565 expanded by bit replication).
+fn save_png(board: &Board, path: &str) {
+    let (w, h) = board.display_size();
+    let px = board.dump_buffer(BufferKind::Front);
+    let mut rgb = Vec::with_capacity((w * h * 3) as usize);
+    for p in px.iter().take((w * h) as usize) {
+        let (r, g, b) = ((p >> 11) & 0x1f, (p >> 5) & 0x3f, p & 0x1f);
+        rgb.push(((r << 3) | (r >> 2)) as u8);
+        rgb.push(((g << 2) | (g >> 4)) as u8);
+        rgb.push(((b << 3) | (b >> 2)) as u8);
+    }
+    if let Err(e) = image::save_buffer(path, &rgb, w, h, image::ExtendedColorType::Rgb8) {
+        eprintln!("glide3: cannot write {path}: {e}");
+    }
+}
+
+fn after_swap(ctx: &mut Ctx) {
+    let n = ctx.glide.swap_count();
+    let Some((path, swaps)) = ctx.png.clone() else {
+        return;
+    };
+    match swaps {
+        None => save_png(&ctx.board.borrow(), &path),
+        Some(list) if list.contains(&n) => {
+            let out = if list.len() > 1 {
+                match path.rfind('.') {
+                    Some(i) => format!("{}_swap{n}{}", &path[..i], &path[i..]),
+                    None => format!("{path}_swap{n}"),
+                }
+            } else {
+                path
+            };
+            save_png(&ctx.board.borrow(), &out);
+        }
+        Some(_) => {}
+    }
+}
+
+/// Read one C vertex: enough words for every enabled layout parameter.
+unsafe fn vertex(layout: &VertexLayout, p: *const c_void) -> Vec<f32> {
+    if p.is_null() {
+        return Vec::new();
+    }
+    let mut end = layout.xy.offset + 8;
+    for (prm, size) in [
+        (layout.z, 4),
+        (layout.w, 4),
+        (layout.q, 4),
+        (layout.fog, 4),
+        (layout.a, 4),
+        (layout.rgb, 12),
+        (layout.pargb, 4),
+        (layout.st[0], 8),
+        (layout.st[1], 8),
+        (layout.st[2], 8),
+        (layout.qn[0], 4),
+        (layout.qn[1], 4),
+        (layout.qn[2], 4),
+    ] {
+        if prm.enabled {
+            end = end.max(prm.offset + size);
+        }
+    }
+    let n = (end.max(0) as usize).div_ceil(4);
+    let src = p as *const f32;
+    // SAFETY: the Glide contract: the vertex holds every parameter of the layout.
+    (0..n).map(|i| unsafe { src.add(i).read_unaligned() }).collect()
+}
+
+// ----- init and windows ------------------------------------------------------------
+
+/// `grGlideInit`.
+#[no_mangle]
+pub extern "C" fn grGlideInit() {
+    CTX.with(|c| {
+        if c.borrow().is_some() {
+            return;
+        }
+        let cfg = board_config();
+        let board = Rc::new(RefCell::new(Board::new(cfg)));
+        let trace = open_trace(&cfg);
+        let bus = Bus { board: board.clone(), trace: trace.clone() };
+        let glide = Glide::init(Box::new(bus), BoardInfo::new(cfg.fbi_mb, cfg.tmus, cfg.tmu_mb));
+        *c.borrow_mut() = Some(Ctx {
+            glide,
+            board,
+            trace,
+            states: HashMap::new(),
+            layouts: HashMap::new(),
+            lfb: [None, None],
+            png: png_setting(),
+        });
+    });
+}
+
+/// `grGlideShutdown`.
+#[no_mangle]
+pub extern "C" fn grGlideShutdown() {
+    CTX.with(|c| {
+        if let Some(ctx) = c.borrow_mut().take() {
+            if let Some(t) = &ctx.trace {
+                let _ = t.borrow_mut().flush();
+            }
+            drop(ctx.glide.shutdown());
+        }
+    });
+}
+
+/// `grGlideGetVersion`: copies "3.01.0001" into an 80-byte buffer.
+#[no_mangle]
+pub unsafe extern "C" fn grGlideGetVersion(version: *mut c_char) {
+    if version.is_null() {
+        return;
+    }
+    let v = b"3.01.0001\0";
+    // SAFETY: the caller provides 80 bytes.
+    unsafe { std::ptr::copy_nonoverlapping(v.as_ptr() as *const c_char, version, v.len()) };
+}
+
+/// `grSstSelect`.
+#[no_mangle]
+pub extern "C" fn grSstSelect(which: c_int) {
+    with(|c| c.glide.sst_select(which));
+}
+
+/// `grSstWinOpen`: returns a non-zero context on success.
+#[no_mangle]
+pub extern "C" fn grSstWinOpen(_hwnd: u32, res: i32, refresh: i32, format: i32, origin: i32, ncolor: c_int, naux: c_int) -> u32 {
+    with(|c| u32::from(c.glide.win_open(res as u32, refresh as u32, format as u32, origin as u32, ncolor, naux)))
+}
+
+/// `grSstWinClose`.
+#[no_mangle]
+pub extern "C" fn grSstWinClose(_context: u32) -> FxBool {
+    with(|c| FxBool::from(c.glide.win_close()))
+}
+
+/// `grSelectContext`.
+#[no_mangle]
+pub extern "C" fn grSelectContext(context: u32) -> FxBool {
+    FxBool::from(context != 0)
+}
+
+/// `grSstOrigin`.
+#[no_mangle]
+pub extern "C" fn grSstOrigin(origin: i32) {
+    with(|c| c.glide.sst_origin(origin as u32));
+}
+
+/// `grErrorSetCallback`.
+#[no_mangle]
+pub extern "C" fn grErrorSetCallback(f: ErrorFn) {
+    with(|c| {
+        c.glide.set_error_callback(Box::new(move |msg: &str, fatal: bool| match f {
+            Some(cb) => {
+                let s = CString::new(msg.replace('\0', " ")).unwrap_or_default();
+                // SAFETY: a C function pointer registered by the program.
+                unsafe { cb(s.as_ptr(), FxBool::from(fatal)) };
+            }
+            None => eprintln!("glide3: {msg}"),
+        }));
+    });
+}
+
+// ----- queries -----------------------------------------------------------------------
+
+/// `grGet`.
+#[no_mangle]
+pub unsafe extern "C" fn grGet(pname: u32, plength: u32, params: *mut i32) -> u32 {
+    if params.is_null() {
+        return 0;
+    }
+    let mut buf = [0i32; 4];
+    let n = with(|c| c.glide.get(pname, plength, &mut buf));
+    if n > 0 {
+        let words = (n as usize / 4).min(4);
+        // SAFETY: the caller provides plength bytes.
+        unsafe { std::ptr::copy_nonoverlapping(buf.as_ptr(), params, words) };
+    }
+    n
+}
+
+/// `grGetString`.
+#[no_mangle]
+pub extern "C" fn grGetString(pname: u32) -> *const c_char {
+    static STRINGS: [&CStr; 6] = [c"FOGALPHA ", c"Voodoo Graphics", c"Glide", c"3Dfx Interactive", c"3.01.0001", c"ERROR"];
+    let s = glide::get::get_string(pname);
+    STRINGS.iter().find(|c| c.to_str() == Ok(s)).unwrap_or(&STRINGS[5]).as_ptr()
+}
+
+/// `grReset`: resets the statistics counters (accepted, nothing to clear on the bus).
+#[no_mangle]
+pub extern "C" fn grReset(_what: u32) -> FxBool {
+    1
+}
+
+// ----- state ------------------------------------------------------------------------
+
+macro_rules! forward {
+    ($( $(#[$m:meta])* fn $name:ident($($a:ident: $t:ty),*) => $method:ident($($e:expr),*); )*) => {
+        $(
+            $(#[$m])*
+            #[no_mangle]
+            pub extern "C" fn $name($($a: $t),*) {
+                with(|c| c.glide.$method($($e),*));
+            }
+        )*
+    };
+}
+
+forward! {
+    /// `grAlphaBlendFunction`.
+    fn grAlphaBlendFunction(a: i32, b: i32, c2: i32, d: i32) => alpha_blend_function(a as u32, b as u32, c2 as u32, d as u32);
+    /// `grAlphaCombine`.
+    fn grAlphaCombine(f: i32, fa: i32, l: i32, o: i32, inv: FxBool) => alpha_combine(f as u32, fa as u32, l as u32, o as u32, inv != 0);
+    /// `grAlphaControlsITRGBLighting`.
+    fn grAlphaControlsITRGBLighting(e: FxBool) => alpha_controls_itrgb_lighting(e != 0);
+    /// `grAlphaTestFunction`.
+    fn grAlphaTestFunction(f: i32) => alpha_test_function(f as u32);
+    /// `grAlphaTestReferenceValue`.
+    fn grAlphaTestReferenceValue(v: u8) => alpha_test_reference_value(v);
+    /// `grColorCombine`.
+    fn grColorCombine(f: i32, fa: i32, l: i32, o: i32, inv: FxBool) => color_combine(f as u32, fa as u32, l as u32, o as u32, inv != 0);
+    /// `grChromakeyMode`.
+    fn grChromakeyMode(m: i32) => chromakey_mode(m as u32);
+    /// `grChromakeyValue`.
+    fn grChromakeyValue(v: u32) => chromakey_value(v);
+    /// `grChromaRangeExt`.
+    fn grChromaRangeExt(v: u32, r: u32, m: u32) => chroma_range(v, r, m);
+    /// `grClipWindow`.
+    fn grClipWindow(a: u32, b: u32, c2: u32, d: u32) => clip_window(a, b, c2, d);
+    /// `grColorMask`.
+    fn grColorMask(rgb: FxBool, a: FxBool) => color_mask(rgb != 0, a != 0);
+    /// `grConstantColorValue`.
+    fn grConstantColorValue(v: u32) => constant_color_value(v);
+    /// `grCullMode`.
+    fn grCullMode(m: i32) => cull_mode(m as u32);
+    /// `grDepthBiasLevel`.
+    fn grDepthBiasLevel(l: i32) => depth_bias_level(l);
+    /// `grDepthBufferFunction`.
+    fn grDepthBufferFunction(f: i32) => depth_buffer_function(f as u32);
+    /// `grDepthBufferMode`.
+    fn grDepthBufferMode(m: i32) => depth_buffer_mode(m as u32);
+    /// `grDepthMask`.
+    fn grDepthMask(e: FxBool) => depth_mask(e != 0);
+    /// `grDisableAllEffects`.
+    fn grDisableAllEffects() => disable_all_effects();
+    /// `grDitherMode`.
+    fn grDitherMode(m: i32) => dither_mode(m as u32);
+    /// `grFogColorValue`.
+    fn grFogColorValue(v: u32) => fog_color_value(v);
+    /// `grFogMode`.
+    fn grFogMode(m: i32) => fog_mode(m as u32);
+    /// `grRenderBuffer`.
+    fn grRenderBuffer(b: i32) => render_buffer(b as u32);
+    /// `grEnable`.
+    fn grEnable(m: u32) => enable(m);
+    /// `grDisable`.
+    fn grDisable(m: u32) => disable(m);
+    /// `grCoordinateSpace`.
+    fn grCoordinateSpace(m: u32) => coordinate_space(m);
+    /// `grDepthRange`.
+    fn grDepthRange(n: f32, f: f32) => depth_range(n, f);
+    /// `grViewport`.
+    fn grViewport(x: i32, y: i32, w: i32, h: i32) => viewport(x, y, w, h);
+    /// `grLfbConstantAlpha`.
+    fn grLfbConstantAlpha(a: u8) => lfb_constant_alpha(a);
+    /// `grLfbConstantDepth`.
+    fn grLfbConstantDepth(d: u32) => lfb_constant_depth(d);
+    /// `grLfbWriteColorFormat`.
+    fn grLfbWriteColorFormat(f: i32) => lfb_write_color_format(f as u32);
+    /// `grLfbWriteColorSwizzle`.
+    fn grLfbWriteColorSwizzle(b: FxBool, w: FxBool) => lfb_write_color_swizzle(b != 0, w != 0);
+    /// `grVertexLayout`.
+    fn grVertexLayout(p: u32, o: i32, m: u32) => vertex_layout(p, o, m);
+    /// `grFinish`.
+    fn grFinish() => finish();
+    /// `guGammaCorrectionRGB`.
+    fn guGammaCorrectionRGB(r: f32, g: f32, b: f32) => gamma_correction_rgb(r, g, b);
+    /// `grTexClampMode`.
+    fn grTexClampMode(t: i32, s: i32, tt: i32) => tex_clamp_mode(t as u32, s as u32, tt as u32);
+    /// `grTexCombine`.
+    fn grTexCombine(t: i32, rf: i32, rfa: i32, af: i32, afa: i32, ri: FxBool, ai: FxBool) => tex_combine(t as u32, rf as u32, rfa as u32, af as u32, afa as u32, ri != 0, ai != 0);
+    /// `grTexDetailControl`.
+    fn grTexDetailControl(t: i32, b: c_int, s: u8, m: f32) => tex_detail_control(t as u32, b, s, m);
+    /// `grTexFilterMode`.
+    fn grTexFilterMode(t: i32, mi: i32, ma: i32) => tex_filter_mode(t as u32, mi as u32, ma as u32);
+    /// `grTexLodBiasValue`.
+    fn grTexLodBiasValue(t: i32, v: f32) => tex_lod_bias_value(t as u32, v);
+    /// `grTexMipMapMode`.
+    fn grTexMipMapMode(t: i32, m: i32, b: FxBool) => tex_mipmap_mode(t as u32, m as u32, b != 0);
+    /// `grTexMultibase`.
+    fn grTexMultibase(t: i32, e: FxBool) => tex_multibase(t as u32, e != 0);
+    /// `grTexNCCTable`.
+    fn grTexNCCTable(t: u32) => tex_ncc_table_select(t);
+}
+
+/// `grFlush`: nothing is buffered on the host.
+#[no_mangle]
+pub extern "C" fn grFlush() {}
+
+/// `grFogTable`: 64 entries.
+#[no_mangle]
+pub unsafe extern "C" fn grFogTable(table: *const u8) {
+    if table.is_null() {
+        return;
+    }
+    let mut t = [0u8; 64];
+    // SAFETY: the caller provides 64 entries (GR_FOG_TABLE_ENTRIES).
+    unsafe { std::ptr::copy_nonoverlapping(table, t.as_mut_ptr(), 64) };
+    with(|c| c.glide.fog_table(&t));
+}
+
+/// `grLoadGammaTable`.
+#[no_mangle]
+pub unsafe extern "C" fn grLoadGammaTable(n: u32, r: *const u32, g: *const u32, b: *const u32) {
+    if r.is_null() || g.is_null() || b.is_null() {
+        return;
+    }
+    let n = n.min(256) as usize;
+    // SAFETY: the caller provides n entries in each table.
+    let (r, g, b) = unsafe { (std::slice::from_raw_parts(r, n), std::slice::from_raw_parts(g, n), std::slice::from_raw_parts(b, n)) };
+    with(|c| c.glide.load_gamma_table(r, g, b));
+}
+
+/// `grGlideGetState`: the state is kept on our side, keyed by the buffer address.
+#[no_mangle]
+pub extern "C" fn grGlideGetState(state: *mut c_void) {
+    with(|c| {
+        let s = c.glide.get_state();
+        c.states.insert(state as usize, s);
+    });
+}
+
+/// `grGlideSetState`.
+#[no_mangle]
+pub extern "C" fn grGlideSetState(state: *const c_void) {
+    with(|c| match c.states.get(&(state as usize)).cloned() {
+        Some(s) => c.glide.set_state(&s),
+        None => c.glide.report_error("grGlideSetState: state was not saved by grGlideGetState"),
+    });
+}
+
+/// `grGlideGetVertexLayout`.
+#[no_mangle]
+pub extern "C" fn grGlideGetVertexLayout(layout: *mut c_void) {
+    with(|c| {
+        let l = c.glide.get_vertex_layout();
+        c.layouts.insert(layout as usize, l);
+    });
+}
+
+/// `grGlideSetVertexLayout`.
+#[no_mangle]
+pub extern "C" fn grGlideSetVertexLayout(layout: *const c_void) {
+    with(|c| {
+        if let Some(l) = c.layouts.get(&(layout as usize)).copied() {
+            c.glide.set_vertex_layout(&l);
+        }
+    });
+}
+
+// ----- drawing ----------------------------------------------------------------------
+
+/// `grDrawPoint`.
+#[no_mangle]
+pub unsafe extern "C" fn grDrawPoint(p: *const c_void) {
+    with(|c| {
+        let l = c.glide.get_vertex_layout();
+        // SAFETY: Glide vertex pointer.
+        let v = unsafe { vertex(&l, p) };
+        c.glide.draw_point(&v);
+    });
+}
+
+/// `grDrawLine`.
+#[no_mangle]
+pub unsafe extern "C" fn grDrawLine(a: *const c_void, b: *const c_void) {
+    with(|c| {
+        let l = c.glide.get_vertex_layout();
+        // SAFETY: Glide vertex pointers.
+        let (a, b) = unsafe { (vertex(&l, a), vertex(&l, b)) };
+        c.glide.draw_line(&a, &b);
+    });
+}
+
+/// `grDrawTriangle`.
+#[no_mangle]
+pub unsafe extern "C" fn grDrawTriangle(a: *const c_void, b: *const c_void, cc: *const c_void) {
+    with(|c| {
+        let l = c.glide.get_vertex_layout();
+        // SAFETY: Glide vertex pointers.
+        let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
+        c.glide.draw_triangle(&a, &b, &cc);
+    });
+}
+
+/// `grAADrawTriangle` (edges not antialiased; see the glide3 crate).
+#[no_mangle]
+pub unsafe extern "C" fn grAADrawTriangle(a: *const c_void, b: *const c_void, cc: *const c_void, _ab: FxBool, _bc: FxBool, _ca: FxBool) {
+    // SAFETY: forwarded Glide vertex pointers.
+    unsafe { grDrawTriangle(a, b, cc) };
+}
+
+/// `grDrawVertexArray`: `pointers` is an array of `count` vertex pointers.
+#[no_mangle]
+pub unsafe extern "C" fn grDrawVertexArray(mode: u32, count: u32, pointers: *const *const c_void) {
+    if pointers.is_null() {
+        return;
+    }
+    with(|c| {
+        let l = c.glide.get_vertex_layout();
+        // SAFETY: `count` valid vertex pointers.
+        let verts: Vec<Vec<f32>> = (0..count as usize).map(|i| unsafe { vertex(&l, *pointers.add(i)) }).collect();
+        let refs: Vec<&[f32]> = verts.iter().map(Vec::as_slice).collect();
+        c.glide.draw_vertex_array(mode, &refs);
+    });
+}
+
+/// `grDrawVertexArrayContiguous`: `count` vertices `stride` bytes apart.
+#[no_mangle]
+pub unsafe extern "C" fn grDrawVertexArrayContiguous(mode: u32, count: u32, data: *const c_void, stride: u32) {
+    if data.is_null() {
+        return;
+    }
+    with(|c| {
+        let l = c.glide.get_vertex_layout();
+        // SAFETY: `count` vertices at `stride` bytes.
+        let verts: Vec<Vec<f32>> = (0..count as usize)
+            .map(|i| unsafe { vertex(&l, (data as *const u8).add(i * stride as usize) as *const c_void) })
+            .collect();
+        let refs: Vec<&[f32]> = verts.iter().map(Vec::as_slice).collect();
+        c.glide.draw_vertex_array(mode, &refs);
+    });
+}
+
+// ----- buffers ----------------------------------------------------------------------
+
+/// `grBufferClear`.
+#[no_mangle]
+pub extern "C" fn grBufferClear(color: u32, alpha: u8, depth: u32) {
+    with(|c| c.glide.buffer_clear(color, alpha, depth));
+}
+
+/// `grBufferSwap`; saves the PNG when `VOODOO_PNG` asks for this swap.
+#[no_mangle]
+pub extern "C" fn grBufferSwap(interval: u32) {
+    with(|c| {
+        c.glide.buffer_swap(interval);
+        after_swap(c);
+    });
+}
+
+/// `grBufferNumPending`.
+#[no_mangle]
+pub extern "C" fn grBufferNumPending() -> c_int {
+    with(|c| c.glide.buffer_num_pending() as c_int)
+}
+
+// ----- LFB --------------------------------------------------------------------------
+
+/// `GrLfbInfo_t`.
+#[repr(C)]
+pub struct GrLfbInfo {
+    /// sizeof(GrLfbInfo_t).
+    pub size: c_int,
+    /// Host pointer to the (shadowed) frame buffer.
+    pub lfb_ptr: *mut c_void,
+    /// Row stride in bytes.
+    pub stride_in_bytes: u32,
+    /// Effective write mode.
+    pub write_mode: i32,
+    /// Origin.
+    pub origin: i32,
+}
+
+/// `grLfbLock`: the pointer is a host shadow; a read lock fills it from the board,
+/// a write lock sends the words that changed when unlocked.
+/// UNVERIFIED/limitation: words written with the value they already held are not sent.
+#[no_mangle]
+pub unsafe extern "C" fn grLfbLock(ty: u32, buffer: i32, mode: i32, origin: i32, pipeline: FxBool, info: *mut GrLfbInfo) -> FxBool {
+    if info.is_null() {
+        return 0;
+    }
+    with(|c| {
+        let Some(li) = c.glide.lfb_lock(ty, buffer as u32, mode as u32, origin as u32, pipeline != 0) else {
+            return 0;
+        };
+        let write = ty & !GR_LFB_NOIDLE == GR_LFB_WRITE_ONLY;
+        let (w, h) = c.glide.screen_size();
+        let mut words = vec![0u32; LFB_WORDS];
+        if !write || li.stride_in_bytes == 2048 {
+            // Fill what the program can see from the board (16-bit layout).
+            for y in 0..h as usize {
+                for x in 0..(w as usize).div_ceil(2) {
+                    words[y * 512 + x] = c.glide.lfb_read32((y * 2048 + x * 4) as u32);
+                }
+            }
+        }
+        let shadow = LfbShadow { initial: if write { words.clone() } else { Vec::new() }, words, write };
+        let slot = usize::from(write);
+        c.lfb[slot] = Some(shadow);
+        let ptr = c.lfb[slot].as_mut().map_or(std::ptr::null_mut(), |s| s.words.as_mut_ptr() as *mut c_void);
+        // SAFETY: checked non-null above.
+        unsafe {
+            (*info).lfb_ptr = ptr;
+            (*info).stride_in_bytes = li.stride_in_bytes;
+            (*info).write_mode = li.write_mode as i32;
+            (*info).origin = li.origin as i32;
+        }
+        1
+    })
+}
+
+/// `grLfbUnlock`.
+#[no_mangle]
+pub extern "C" fn grLfbUnlock(ty: u32, buffer: i32) -> FxBool {
+    with(|c| {
+        let write = ty & !GR_LFB_NOIDLE == GR_LFB_WRITE_ONLY;
+        if let Some(s) = c.lfb[usize::from(write)].take() {
+            if s.write {
+                for (i, (&now, &was)) in s.words.iter().zip(&s.initial).enumerate() {
+                    if now != was {
+                        c.glide.lfb_write32((i * 4) as u32, now);
+                    }
+                }
+            }
+        }
+        FxBool::from(c.glide.lfb_unlock(ty, buffer as u32))
+    })
+}
+
+/// `grLfbWriteRegion`.
+#[no_mangle]
+pub unsafe extern "C" fn grLfbWriteRegion(buffer: i32, x: u32, y: u32, fmt: u32, w: u32, h: u32, pipeline: FxBool, stride: i32, data: *const c_void) -> FxBool {
+    if data.is_null() || stride < 0 {
+        return 0;
+    }
+    let len = stride as usize * h as usize;
+    // SAFETY: the caller provides h rows of stride bytes.
+    let src = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
+    with(|c| FxBool::from(c.glide.lfb_write_region(buffer as u32, x, y, fmt, w, h, pipeline != 0, stride as usize, src)))
+}
+
+/// `grLfbReadRegion`.
+#[no_mangle]
+pub unsafe extern "C" fn grLfbReadRegion(buffer: i32, x: u32, y: u32, w: u32, h: u32, stride: u32, data: *mut c_void) -> FxBool {
+    if data.is_null() {
+        return 0;
+    }
+    let len = stride as usize * h as usize;
+    // SAFETY: the caller provides h rows of stride bytes.
+    let dst = unsafe { std::slice::from_raw_parts_mut(data as *mut u8, len) };
+    with(|c| FxBool::from(c.glide.lfb_read_region(buffer as u32, x, y, w, h, stride as usize, dst)))
+}
+
+// ----- textures ---------------------------------------------------------------------
+
+/// `GrTexInfo`.
+#[repr(C)]
+pub struct GrTexInfo {
+    /// Smallest LOD.
+    pub small_lod_log2: i32,
+    /// Largest LOD.
+    pub large_lod_log2: i32,
+    /// Aspect ratio.
+    pub aspect_ratio_log2: i32,
+    /// Texture format.
+    pub format: i32,
+    /// Texel data.
+    pub data: *mut c_void,
+}
+
+unsafe fn tex_info(p: *const GrTexInfo) -> Option<(TexInfo, *const c_void)> {
+    // SAFETY: caller's GrTexInfo pointer (checked for null).
+    let i = unsafe { p.as_ref()? };
+    Some((
+        TexInfo {
+            small_lod: i.small_lod_log2.max(0) as u32,
+            large_lod: i.large_lod_log2.max(0) as u32,
+            aspect: i.aspect_ratio_log2,
+            format: i.format.max(0) as u32,
+        },
+        i.data,
+    ))
+}
+
+/// Bytes of host data a mipmap (levels large..=small) occupies.
+fn host_bytes(info: &TexInfo) -> usize {
+    let texel = if info.format >= GR_TEXFMT_16BIT { 2 } else { 1 };
+    (info.small_lod..=info.large_lod.min(8))
+        .map(|l| {
+            let (w, h) = glide::tex::level_wh(l, info.aspect);
+            (w * h) as usize * texel
+        })
+        .sum()
+}
+
+/// `grTexMinAddress`.
+#[no_mangle]
+pub extern "C" fn grTexMinAddress(tmu: i32) -> u32 {
+    with(|c| c.glide.tex_min_address(tmu as u32))
+}
+
+/// `grTexMaxAddress`.
+#[no_mangle]
+pub extern "C" fn grTexMaxAddress(tmu: i32) -> u32 {
+    with(|c| c.glide.tex_max_address(tmu as u32))
+}
+
+/// `grTexTextureMemRequired`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexTextureMemRequired(even_odd: u32, info: *const GrTexInfo) -> u32 {
+    // SAFETY: caller's GrTexInfo.
+    let Some((i, _)) = (unsafe { tex_info(info) }) else {
+        return 0;
+    };
+    with(|c| c.glide.tex_texture_mem_required(even_odd, &i))
+}
+
+/// `grTexCalcMemRequired`.
+#[no_mangle]
+pub extern "C" fn grTexCalcMemRequired(small: i32, large: i32, aspect: i32, format: i32) -> u32 {
+    with(|c| c.glide.tex_calc_mem_required(small.max(0) as u32, large.max(0) as u32, aspect, format.max(0) as u32))
+}
+
+/// `grTexSource`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexSource(tmu: i32, start: u32, even_odd: u32, info: *const GrTexInfo) {
+    // SAFETY: caller's GrTexInfo.
+    if let Some((i, _)) = unsafe { tex_info(info) } {
+        with(|c| c.glide.tex_source(tmu as u32, start, even_odd, &i));
+    }
+}
+
+/// `grTexMultibaseAddress`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexMultibaseAddress(tmu: i32, range: u32, start: u32, even_odd: u32, info: *const GrTexInfo) {
+    // SAFETY: caller's GrTexInfo.
+    if let Some((i, _)) = unsafe { tex_info(info) } {
+        with(|c| c.glide.tex_multibase_address(tmu as u32, range, start, even_odd, &i));
+    }
+}
+
+/// `grTexDownloadMipMap`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexDownloadMipMap(tmu: i32, start: u32, even_odd: u32, info: *const GrTexInfo) {
+    // SAFETY: caller's GrTexInfo.
+    let Some((i, data)) = (unsafe { tex_info(info) }) else {
+        return;
+    };
+    if data.is_null() {
+        return;
+    }
+    // SAFETY: the texel data covers every level of the mipmap.
+    let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, host_bytes(&i)) };
+    with(|c| c.glide.tex_download_mipmap(tmu as u32, start, even_odd, &i, bytes));
+}
+
+/// `grTexDownloadMipMapLevel`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexDownloadMipMapLevel(tmu: i32, start: u32, lod: i32, large: i32, aspect: i32, format: i32, even_odd: u32, data: *const c_void) {
+    // SAFETY: forwarded with the whole level.
+    let (_, h) = glide::tex::level_wh(lod.max(0) as u32, aspect);
+    unsafe { grTexDownloadMipMapLevelPartial(tmu, start, lod, large, aspect, format, even_odd, data, 0, h as c_int - 1) };
+}
+
+/// `grTexDownloadMipMapLevelPartial`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexDownloadMipMapLevelPartial(
+    tmu: i32,
+    start: u32,
+    lod: i32,
+    large: i32,
+    aspect: i32,
+    format: i32,
+    even_odd: u32,
+    data: *const c_void,
+    t: c_int,
+    max_t: c_int,
+) -> FxBool {
+    if data.is_null() || t < 0 || max_t < t {
+        return 0;
+    }
+    let (w, _) = glide::tex::level_wh(lod.max(0) as u32, aspect);
+    let texel = if format >= GR_TEXFMT_16BIT as i32 { 2 } else { 1 };
+    let len = (w as usize) * texel * (max_t - t + 1) as usize;
+    // SAFETY: rows t..=max_t of the level.
+    let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
+    with(|c| {
+        FxBool::from(c.glide.tex_download_mipmap_level_partial(
+            tmu as u32,
+            start,
+            lod.max(0) as u32,
+            large.max(0) as u32,
+            aspect,
+            format.max(0) as u32,
+            even_odd,
+            bytes,
+            t,
+            max_t,
+        ))
+    })
+}
+
+/// Palette (`GuTexPalette`: 256 x FxU32) or NCC table (`GuNccTable`: 16 + 4x3x2... the
+/// SST-1 packed form is the last 12 words) download.
+unsafe fn download_table(tmu: u32, ty: u32, data: *const c_void, start: usize, end: usize) {
+    if data.is_null() {
+        return;
+    }
+    if ty == GR_TEXTABLE_PALETTE {
+        let mut pal = [0u32; 256];
+        // SAFETY: a GuTexPalette has 256 words.
+        unsafe { std::ptr::copy_nonoverlapping(data as *const u32, pal.as_mut_ptr(), 256) };
+        with(|c| c.glide.tex_download_palette_range(tmu, &pal, start, end));
+    } else {
+        // GuNccTable: yRGB[16] bytes, iRGB[4][3] i16, qRGB[4][3] i16, packed_data[12] u32.
+        let mut packed = [0u32; 12];
+        // SAFETY: the packed words sit at byte 64 of a GuNccTable.
+        unsafe { std::ptr::copy_nonoverlapping((data as *const u8).add(64) as *const u32, packed.as_mut_ptr(), 12) };
+        with(|c| c.glide.tex_download_ncc_table(tmu, ty, &packed));
+    }
+}
+
+/// `grTexDownloadTable`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexDownloadTable(ty: u32, data: *const c_void) {
+    // SAFETY: forwarded table pointer.
+    unsafe { download_table(0, ty, data, 0, 255) };
+}
+
+/// `grTexDownloadTablePartial`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexDownloadTablePartial(ty: u32, data: *const c_void, start: c_int, end: c_int) {
+    // SAFETY: forwarded table pointer.
+    unsafe { download_table(0, ty, data, start.max(0) as usize, end.max(0) as usize) };
+}
+
+/// `grTexDownloadTableExt`.
+#[no_mangle]
+pub unsafe extern "C" fn grTexDownloadTableExt(tmu: i32, ty: u32, data: *const c_void) {
+    // SAFETY: forwarded table pointer.
+    unsafe { download_table(tmu as u32, ty, data, 0, 255) };
+}
+
+// ----- gu utilities -----------------------------------------------------------------
+
+/// `guFogTableIndexToW`.
+#[no_mangle]
+pub extern "C" fn guFogTableIndexToW(i: c_int) -> f32 {
+    glide::get::fog_table_index_to_w(i)
+}
+
+unsafe fn fog_out(t: *mut u8, f: impl FnOnce(&mut [u8; 64])) {
+    if t.is_null() {
+        return;
+    }
+    let mut table = [0u8; 64];
+    f(&mut table);
+    // SAFETY: the caller provides 64 entries.
+    unsafe { std::ptr::copy_nonoverlapping(table.as_ptr(), t, 64) };
+}
+
+/// `guFogGenerateExp`.
+#[no_mangle]
+pub unsafe extern "C" fn guFogGenerateExp(t: *mut u8, density: f32) {
+    // SAFETY: caller's 64-entry table.
+    unsafe { fog_out(t, |x| glide::get::fog_generate_exp(x, density)) };
+}
+
+/// `guFogGenerateExp2`.
+#[no_mangle]
+pub unsafe extern "C" fn guFogGenerateExp2(t: *mut u8, density: f32) {
+    // SAFETY: caller's 64-entry table.
+    unsafe { fog_out(t, |x| glide::get::fog_generate_exp2(x, density)) };
+}
+
+/// `guFogGenerateLinear`.
+#[no_mangle]
+pub unsafe extern "C" fn guFogGenerateLinear(t: *mut u8, near: f32, far: f32) {
+    // SAFETY: caller's 64-entry table.
+    unsafe { fog_out(t, |x| glide::get::fog_generate_linear(x, near, far)) };
+}

@@ -148,6 +148,11 @@ impl Glide {
         self.last_error.as_deref()
     }
 
+    /// Report an error through the callback (for front-end layers such as the C ABI).
+    pub fn report_error(&mut self, msg: &str) {
+        self.report(msg.to_string(), false);
+    }
+
     pub(crate) fn report(&mut self, msg: String, fatal: bool) {
         if let Some(cb) = self.error_cb.as_mut() {
             cb(&msg, fatal);

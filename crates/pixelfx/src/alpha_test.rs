@@ -24,7 +24,7 @@ mod tests {
 
     #[test]
     fn all_functions_at_the_reference() {
-        use AlphaFunction::*;
+        use sst1_regs::CompareFunction::*;
         let at: Vec<bool> = [Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always]
             .iter()
             .map(|&f| test(f, 0x80, 0x80))

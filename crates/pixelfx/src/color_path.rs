@@ -147,7 +147,7 @@ mod tests {
         // cc_mselect = c_local (1 << 10), reverse blend (bit 13): other * (local + 1) >> 8
         let cp = FbzColorPath(1 << 10 | 1 << 13);
         let out = combine(cp, RED, LOCAL, 0);
-        assert_eq!((out.r, out.g, out.b), ((200 * 11) >> 8, (100 * 21) >> 8, (50 * 31) >> 8));
+        assert_eq!((out.r, out.g, out.b), (((200 * 11) >> 8) as u8, ((100 * 21) >> 8) as u8, ((50 * 31) >> 8) as u8));
         // sub c_local then add c_local, invert
         let cp = FbzColorPath(1 << 9 | 1 << 14 | 1 << 16);
         let out = combine(cp, RED, LOCAL, 0);

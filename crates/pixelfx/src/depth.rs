@@ -49,7 +49,7 @@ mod tests {
 
     #[test]
     fn functions() {
-        use DepthFunction::*;
+        use sst1_regs::CompareFunction::*;
         let r: Vec<bool> = [Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always]
             .iter()
             .map(|&f| test(f, 5, 5))

@@ -358,6 +358,7 @@ fn op_counts_mind_chip_and_wrap_bits() {
 }
 
 #[test]
+#[allow(clippy::unusual_byte_groupings)] // grouped as the R/G/B fields: 5, 6, 5 bits
 fn rgb565_expansion_replicates_high_bits() {
     assert_eq!(rgb565_to_rgb8(0x0000), [0, 0, 0]);
     assert_eq!(rgb565_to_rgb8(0xffff), [255, 255, 255]);

@@ -142,7 +142,7 @@ fn random_line(rng: &mut Rng) -> String {
 
 #[test]
 fn random_and_mutated_inputs_never_panic() {
-    let mut rng = Rng(0x5eed_0f_5571);
+    let mut rng = Rng(0x5eed_f0e5_5571);
     let trace_path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../traces/conformance/traces/fastfill_depth.trace.gz");
     let gz = std::fs::read(trace_path).unwrap();
