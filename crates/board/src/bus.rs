@@ -84,7 +84,9 @@ impl Board {
             for t in &mut self.tmus {
                 t.begin_triangle();
             }
-            self.fbi.draw_triangle(&mut Chain { tmus: &mut self.tmus });
+            self.fbi.draw_triangle(&mut Chain {
+                tmus: &mut self.tmus,
+            });
         } else {
             self.fbi.draw_triangle(&mut NoTexture);
         }
@@ -99,7 +101,6 @@ impl Board {
         }
     }
 }
-
 
 impl RegisterBus for Board {
     fn write32(&mut self, bus_addr: u32, value: u32) {

@@ -13,6 +13,9 @@ pub struct Chain<'a> {
 impl TexelSource for Chain<'_> {
     #[inline]
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
-        self.tmus.iter_mut().rev().fold(Rgba::default(), |other, t| t.texel(dx, dy, x, y, other))
+        self.tmus
+            .iter_mut()
+            .rev()
+            .fold(Rgba::default(), |other, t| t.texel(dx, dy, x, y, other))
     }
 }

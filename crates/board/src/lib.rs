@@ -35,7 +35,11 @@ pub struct BoardConfig {
 
 impl Default for BoardConfig {
     fn default() -> Self {
-        Self { fbi_mb: 4, tmus: 1, tmu_mb: 4 }
+        Self {
+            fbi_mb: 4,
+            tmus: 1,
+            tmu_mb: 4,
+        }
     }
 }
 
@@ -93,7 +97,9 @@ impl Board {
         Self {
             config,
             fbi: Fbi::new(config.fbi_mb),
-            tmus: (0..config.tmus as u8).map(|i| Tmu::new(i, tmu_bytes)).collect(),
+            tmus: (0..config.tmus as u8)
+                .map(|i| Tmu::new(i, tmu_bytes))
+                .collect(),
             init_enable: 0,
             diagnostics: Diagnostics::default(),
         }

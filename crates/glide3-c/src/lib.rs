@@ -88,8 +88,17 @@ fn with<R: Default>(f: impl FnOnce(&mut Ctx) -> R) -> R {
 }
 
 fn board_config() -> BoardConfig {
-    let env = |k: &str, d: u32| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
-    BoardConfig { fbi_mb: env("VOODOO_FBI_MB", 4), tmus: env("VOODOO_TMUS", 1), tmu_mb: env("VOODOO_TMU_MB", 4) }
+    let env = |k: &str, d: u32| {
+        std::env::var(k)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(d)
+    };
+    BoardConfig {
+        fbi_mb: env("VOODOO_FBI_MB", 4),
+        tmus: env("VOODOO_TMUS", 1),
+        tmu_mb: env("VOODOO_TMU_MB", 4),
+    }
 }
 
 fn open_trace(cfg: &BoardConfig) -> Option<Rc<RefCell<std::io::BufWriter<std::fs::File>>>> {
@@ -99,7 +108,11 @@ fn open_trace(cfg: &BoardConfig) -> Option<Rc<RefCell<std::io::BufWriter<std::fs
     let f = std::fs::File::create(path).ok()?;
     let mut w = std::io::BufWriter::new(f);
     let _ = writeln!(w, "# Glide 3 (voodoo-rs glide3) register trace");
-    let _ = writeln!(w, "config fbi_mb {}\nconfig tmus {}\nconfig tmu_mb {}", cfg.fbi_mb, cfg.tmus, cfg.tmu_mb);
+    let _ = writeln!(
+        w,
+        "config fbi_mb {}\nconfig tmus {}\nconfig tmu_mb {}",
+        cfg.fbi_mb, cfg.tmus, cfg.tmu_mb
+    );
     Some(Rc::new(RefCell::new(w)))
 }
 
@@ -177,7 +190,9 @@ unsafe fn vertex(layout: &VertexLayout, p: *const c_void) -> Vec<f32> {
     let n = (end.max(0) as usize).div_ceil(4);
     let src = p as *const f32;
     // SAFETY: the Glide contract: the vertex holds every parameter of the layout.
-    (0..n).map(|i| unsafe { src.add(i).read_unaligned() }).collect()
+    (0..n)
+        .map(|i| unsafe { src.add(i).read_unaligned() })
+        .collect()
 }
 
 // ----- init and windows ------------------------------------------------------------
@@ -192,8 +207,14 @@ pub extern "C" fn grGlideInit() {
         let cfg = board_config();
         let board = Rc::new(RefCell::new(Board::new(cfg)));
         let trace = open_trace(&cfg);
-        let bus = Bus { board: board.clone(), trace: trace.clone() };
-        let glide = Glide::init(Box::new(bus), BoardInfo::new(cfg.fbi_mb, cfg.tmus, cfg.tmu_mb));
+        let bus = Bus {
+            board: board.clone(),
+            trace: trace.clone(),
+        };
+        let glide = Glide::init(
+            Box::new(bus),
+            BoardInfo::new(cfg.fbi_mb, cfg.tmus, cfg.tmu_mb),
+        );
         *c.borrow_mut() = Some(Ctx {
             glide,
             board,
@@ -238,8 +259,25 @@ pub extern "C" fn grSstSelect(which: c_int) {
 
 /// `grSstWinOpen`: returns a non-zero context on success.
 #[no_mangle]
-pub extern "C" fn grSstWinOpen(_hwnd: u32, res: i32, refresh: i32, format: i32, origin: i32, ncolor: c_int, naux: c_int) -> u32 {
-    with(|c| u32::from(c.glide.win_open(res as u32, refresh as u32, format as u32, origin as u32, ncolor, naux)))
+pub extern "C" fn grSstWinOpen(
+    _hwnd: u32,
+    res: i32,
+    refresh: i32,
+    format: i32,
+    origin: i32,
+    ncolor: c_int,
+    naux: c_int,
+) -> u32 {
+    with(|c| {
+        u32::from(c.glide.win_open(
+            res as u32,
+            refresh as u32,
+            format as u32,
+            origin as u32,
+            ncolor,
+            naux,
+        ))
+    })
 }
 
 /// `grSstWinClose`.
@@ -264,14 +302,15 @@ pub extern "C" fn grSstOrigin(origin: i32) {
 #[no_mangle]
 pub extern "C" fn grErrorSetCallback(f: ErrorFn) {
     with(|c| {
-        c.glide.set_error_callback(Box::new(move |msg: &str, fatal: bool| match f {
-            Some(cb) => {
-                let s = CString::new(msg.replace('\0', " ")).unwrap_or_default();
-                // SAFETY: a C function pointer registered by the program.
-                unsafe { cb(s.as_ptr(), FxBool::from(fatal)) };
-            }
-            None => eprintln!("glide3: {msg}"),
-        }));
+        c.glide
+            .set_error_callback(Box::new(move |msg: &str, fatal: bool| match f {
+                Some(cb) => {
+                    let s = CString::new(msg.replace('\0', " ")).unwrap_or_default();
+                    // SAFETY: a C function pointer registered by the program.
+                    unsafe { cb(s.as_ptr(), FxBool::from(fatal)) };
+                }
+                None => eprintln!("glide3: {msg}"),
+            }));
     });
 }
 
@@ -296,9 +335,20 @@ pub unsafe extern "C" fn grGet(pname: u32, plength: u32, params: *mut i32) -> u3
 /// `grGetString`.
 #[no_mangle]
 pub extern "C" fn grGetString(pname: u32) -> *const c_char {
-    static STRINGS: [&CStr; 6] = [c"FOGALPHA ", c"Voodoo Graphics", c"Glide", c"3Dfx Interactive", c"3.01.0001", c"ERROR"];
+    static STRINGS: [&CStr; 6] = [
+        c"FOGALPHA ",
+        c"Voodoo Graphics",
+        c"Glide",
+        c"3Dfx Interactive",
+        c"3.01.0001",
+        c"ERROR",
+    ];
     let s = glide::get::get_string(pname);
-    STRINGS.iter().find(|c| c.to_str() == Ok(s)).unwrap_or(&STRINGS[5]).as_ptr()
+    STRINGS
+        .iter()
+        .find(|c| c.to_str() == Ok(s))
+        .unwrap_or(&STRINGS[5])
+        .as_ptr()
 }
 
 /// `grReset`: resets the statistics counters (accepted, nothing to clear on the bus).
@@ -432,7 +482,13 @@ pub unsafe extern "C" fn grLoadGammaTable(n: u32, r: *const u32, g: *const u32, 
     }
     let n = n.min(256) as usize;
     // SAFETY: the caller provides n entries in each table.
-    let (r, g, b) = unsafe { (std::slice::from_raw_parts(r, n), std::slice::from_raw_parts(g, n), std::slice::from_raw_parts(b, n)) };
+    let (r, g, b) = unsafe {
+        (
+            std::slice::from_raw_parts(r, n),
+            std::slice::from_raw_parts(g, n),
+            std::slice::from_raw_parts(b, n),
+        )
+    };
     with(|c| c.glide.load_gamma_table(r, g, b));
 }
 
@@ -450,7 +506,9 @@ pub extern "C" fn grGlideGetState(state: *mut c_void) {
 pub extern "C" fn grGlideSetState(state: *const c_void) {
     with(|c| match c.states.get(&(state as usize)).cloned() {
         Some(s) => c.glide.set_state(&s),
-        None => c.glide.report_error("grGlideSetState: state was not saved by grGlideGetState"),
+        None => c
+            .glide
+            .report_error("grGlideSetState: state was not saved by grGlideGetState"),
     });
 }
 
@@ -510,7 +568,14 @@ pub unsafe extern "C" fn grDrawTriangle(a: *const c_void, b: *const c_void, cc: 
 
 /// `grAADrawTriangle` (edges not antialiased; see the glide3 crate).
 #[no_mangle]
-pub unsafe extern "C" fn grAADrawTriangle(a: *const c_void, b: *const c_void, cc: *const c_void, _ab: FxBool, _bc: FxBool, _ca: FxBool) {
+pub unsafe extern "C" fn grAADrawTriangle(
+    a: *const c_void,
+    b: *const c_void,
+    cc: *const c_void,
+    _ab: FxBool,
+    _bc: FxBool,
+    _ca: FxBool,
+) {
     // SAFETY: forwarded Glide vertex pointers.
     unsafe { grDrawTriangle(a, b, cc) };
 }
@@ -524,7 +589,9 @@ pub unsafe extern "C" fn grDrawVertexArray(mode: u32, count: u32, pointers: *con
     with(|c| {
         let l = c.glide.get_vertex_layout();
         // SAFETY: `count` valid vertex pointers.
-        let verts: Vec<Vec<f32>> = (0..count as usize).map(|i| unsafe { vertex(&l, *pointers.add(i)) }).collect();
+        let verts: Vec<Vec<f32>> = (0..count as usize)
+            .map(|i| unsafe { vertex(&l, *pointers.add(i)) })
+            .collect();
         let refs: Vec<&[f32]> = verts.iter().map(Vec::as_slice).collect();
         c.glide.draw_vertex_array(mode, &refs);
     });
@@ -532,7 +599,12 @@ pub unsafe extern "C" fn grDrawVertexArray(mode: u32, count: u32, pointers: *con
 
 /// `grDrawVertexArrayContiguous`: `count` vertices `stride` bytes apart.
 #[no_mangle]
-pub unsafe extern "C" fn grDrawVertexArrayContiguous(mode: u32, count: u32, data: *const c_void, stride: u32) {
+pub unsafe extern "C" fn grDrawVertexArrayContiguous(
+    mode: u32,
+    count: u32,
+    data: *const c_void,
+    stride: u32,
+) {
     if data.is_null() {
         return;
     }
@@ -540,7 +612,12 @@ pub unsafe extern "C" fn grDrawVertexArrayContiguous(mode: u32, count: u32, data
         let l = c.glide.get_vertex_layout();
         // SAFETY: `count` vertices at `stride` bytes.
         let verts: Vec<Vec<f32>> = (0..count as usize)
-            .map(|i| unsafe { vertex(&l, (data as *const u8).add(i * stride as usize) as *const c_void) })
+            .map(|i| unsafe {
+                vertex(
+                    &l,
+                    (data as *const u8).add(i * stride as usize) as *const c_void,
+                )
+            })
             .collect();
         let refs: Vec<&[f32]> = verts.iter().map(Vec::as_slice).collect();
         c.glide.draw_vertex_array(mode, &refs);
@@ -591,12 +668,22 @@ pub struct GrLfbInfo {
 /// a write lock sends the words that changed when unlocked.
 /// UNVERIFIED/limitation: words written with the value they already held are not sent.
 #[no_mangle]
-pub unsafe extern "C" fn grLfbLock(ty: u32, buffer: i32, mode: i32, origin: i32, pipeline: FxBool, info: *mut GrLfbInfo) -> FxBool {
+pub unsafe extern "C" fn grLfbLock(
+    ty: u32,
+    buffer: i32,
+    mode: i32,
+    origin: i32,
+    pipeline: FxBool,
+    info: *mut GrLfbInfo,
+) -> FxBool {
     if info.is_null() {
         return 0;
     }
     with(|c| {
-        let Some(li) = c.glide.lfb_lock(ty, buffer as u32, mode as u32, origin as u32, pipeline != 0) else {
+        let Some(li) =
+            c.glide
+                .lfb_lock(ty, buffer as u32, mode as u32, origin as u32, pipeline != 0)
+        else {
             return 0;
         };
         let write = ty & !GR_LFB_NOIDLE == GR_LFB_WRITE_ONLY;
@@ -610,10 +697,16 @@ pub unsafe extern "C" fn grLfbLock(ty: u32, buffer: i32, mode: i32, origin: i32,
                 }
             }
         }
-        let shadow = LfbShadow { initial: if write { words.clone() } else { Vec::new() }, words, write };
+        let shadow = LfbShadow {
+            initial: if write { words.clone() } else { Vec::new() },
+            words,
+            write,
+        };
         let slot = usize::from(write);
         c.lfb[slot] = Some(shadow);
-        let ptr = c.lfb[slot].as_mut().map_or(std::ptr::null_mut(), |s| s.words.as_mut_ptr() as *mut c_void);
+        let ptr = c.lfb[slot].as_mut().map_or(std::ptr::null_mut(), |s| {
+            s.words.as_mut_ptr() as *mut c_void
+        });
         // SAFETY: checked non-null above.
         unsafe {
             (*info).lfb_ptr = ptr;
@@ -645,26 +738,61 @@ pub extern "C" fn grLfbUnlock(ty: u32, buffer: i32) -> FxBool {
 
 /// `grLfbWriteRegion`.
 #[no_mangle]
-pub unsafe extern "C" fn grLfbWriteRegion(buffer: i32, x: u32, y: u32, fmt: u32, w: u32, h: u32, pipeline: FxBool, stride: i32, data: *const c_void) -> FxBool {
+pub unsafe extern "C" fn grLfbWriteRegion(
+    buffer: i32,
+    x: u32,
+    y: u32,
+    fmt: u32,
+    w: u32,
+    h: u32,
+    pipeline: FxBool,
+    stride: i32,
+    data: *const c_void,
+) -> FxBool {
     if data.is_null() || stride < 0 {
         return 0;
     }
     let len = stride as usize * h as usize;
     // SAFETY: the caller provides h rows of stride bytes.
     let src = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
-    with(|c| FxBool::from(c.glide.lfb_write_region(buffer as u32, x, y, fmt, w, h, pipeline != 0, stride as usize, src)))
+    with(|c| {
+        FxBool::from(c.glide.lfb_write_region(
+            buffer as u32,
+            x,
+            y,
+            fmt,
+            w,
+            h,
+            pipeline != 0,
+            stride as usize,
+            src,
+        ))
+    })
 }
 
 /// `grLfbReadRegion`.
 #[no_mangle]
-pub unsafe extern "C" fn grLfbReadRegion(buffer: i32, x: u32, y: u32, w: u32, h: u32, stride: u32, data: *mut c_void) -> FxBool {
+pub unsafe extern "C" fn grLfbReadRegion(
+    buffer: i32,
+    x: u32,
+    y: u32,
+    w: u32,
+    h: u32,
+    stride: u32,
+    data: *mut c_void,
+) -> FxBool {
     if data.is_null() {
         return 0;
     }
     let len = stride as usize * h as usize;
     // SAFETY: the caller provides h rows of stride bytes.
     let dst = unsafe { std::slice::from_raw_parts_mut(data as *mut u8, len) };
-    with(|c| FxBool::from(c.glide.lfb_read_region(buffer as u32, x, y, w, h, stride as usize, dst)))
+    with(|c| {
+        FxBool::from(
+            c.glide
+                .lfb_read_region(buffer as u32, x, y, w, h, stride as usize, dst),
+        )
+    })
 }
 
 // ----- textures ---------------------------------------------------------------------
@@ -734,7 +862,14 @@ pub unsafe extern "C" fn grTexTextureMemRequired(even_odd: u32, info: *const GrT
 /// `grTexCalcMemRequired`.
 #[no_mangle]
 pub extern "C" fn grTexCalcMemRequired(small: i32, large: i32, aspect: i32, format: i32) -> u32 {
-    with(|c| c.glide.tex_calc_mem_required(small.max(0) as u32, large.max(0) as u32, aspect, format.max(0) as u32))
+    with(|c| {
+        c.glide.tex_calc_mem_required(
+            small.max(0) as u32,
+            large.max(0) as u32,
+            aspect,
+            format.max(0) as u32,
+        )
+    })
 }
 
 /// `grTexSource`.
@@ -748,16 +883,30 @@ pub unsafe extern "C" fn grTexSource(tmu: i32, start: u32, even_odd: u32, info: 
 
 /// `grTexMultibaseAddress`.
 #[no_mangle]
-pub unsafe extern "C" fn grTexMultibaseAddress(tmu: i32, range: u32, start: u32, even_odd: u32, info: *const GrTexInfo) {
+pub unsafe extern "C" fn grTexMultibaseAddress(
+    tmu: i32,
+    range: u32,
+    start: u32,
+    even_odd: u32,
+    info: *const GrTexInfo,
+) {
     // SAFETY: caller's GrTexInfo.
     if let Some((i, _)) = unsafe { tex_info(info) } {
-        with(|c| c.glide.tex_multibase_address(tmu as u32, range, start, even_odd, &i));
+        with(|c| {
+            c.glide
+                .tex_multibase_address(tmu as u32, range, start, even_odd, &i)
+        });
     }
 }
 
 /// `grTexDownloadMipMap`.
 #[no_mangle]
-pub unsafe extern "C" fn grTexDownloadMipMap(tmu: i32, start: u32, even_odd: u32, info: *const GrTexInfo) {
+pub unsafe extern "C" fn grTexDownloadMipMap(
+    tmu: i32,
+    start: u32,
+    even_odd: u32,
+    info: *const GrTexInfo,
+) {
     // SAFETY: caller's GrTexInfo.
     let Some((i, data)) = (unsafe { tex_info(info) }) else {
         return;
@@ -767,15 +916,40 @@ pub unsafe extern "C" fn grTexDownloadMipMap(tmu: i32, start: u32, even_odd: u32
     }
     // SAFETY: the texel data covers every level of the mipmap.
     let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, host_bytes(&i)) };
-    with(|c| c.glide.tex_download_mipmap(tmu as u32, start, even_odd, &i, bytes));
+    with(|c| {
+        c.glide
+            .tex_download_mipmap(tmu as u32, start, even_odd, &i, bytes)
+    });
 }
 
 /// `grTexDownloadMipMapLevel`.
 #[no_mangle]
-pub unsafe extern "C" fn grTexDownloadMipMapLevel(tmu: i32, start: u32, lod: i32, large: i32, aspect: i32, format: i32, even_odd: u32, data: *const c_void) {
+pub unsafe extern "C" fn grTexDownloadMipMapLevel(
+    tmu: i32,
+    start: u32,
+    lod: i32,
+    large: i32,
+    aspect: i32,
+    format: i32,
+    even_odd: u32,
+    data: *const c_void,
+) {
     // SAFETY: forwarded with the whole level.
     let (_, h) = glide::tex::level_wh(lod.max(0) as u32, aspect);
-    unsafe { grTexDownloadMipMapLevelPartial(tmu, start, lod, large, aspect, format, even_odd, data, 0, h as c_int - 1) };
+    unsafe {
+        grTexDownloadMipMapLevelPartial(
+            tmu,
+            start,
+            lod,
+            large,
+            aspect,
+            format,
+            even_odd,
+            data,
+            0,
+            h as c_int - 1,
+        )
+    };
 }
 
 /// `grTexDownloadMipMapLevelPartial`.
@@ -796,7 +970,11 @@ pub unsafe extern "C" fn grTexDownloadMipMapLevelPartial(
         return 0;
     }
     let (w, _) = glide::tex::level_wh(lod.max(0) as u32, aspect);
-    let texel = if format >= GR_TEXFMT_16BIT as i32 { 2 } else { 1 };
+    let texel = if format >= GR_TEXFMT_16BIT as i32 {
+        2
+    } else {
+        1
+    };
     let len = (w as usize) * texel * (max_t - t + 1) as usize;
     // SAFETY: rows t..=max_t of the level.
     let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
@@ -831,7 +1009,13 @@ unsafe fn download_table(tmu: u32, ty: u32, data: *const c_void, start: usize, e
         // GuNccTable: yRGB[16] bytes, iRGB[4][3] i16, qRGB[4][3] i16, packed_data[12] u32.
         let mut packed = [0u32; 12];
         // SAFETY: the packed words sit at byte 64 of a GuNccTable.
-        unsafe { std::ptr::copy_nonoverlapping((data as *const u8).add(64) as *const u32, packed.as_mut_ptr(), 12) };
+        unsafe {
+            std::ptr::copy_nonoverlapping(
+                (data as *const u8).add(64) as *const u32,
+                packed.as_mut_ptr(),
+                12,
+            )
+        };
         with(|c| c.glide.tex_download_ncc_table(tmu, ty, &packed));
     }
 }
@@ -845,7 +1029,12 @@ pub unsafe extern "C" fn grTexDownloadTable(ty: u32, data: *const c_void) {
 
 /// `grTexDownloadTablePartial`.
 #[no_mangle]
-pub unsafe extern "C" fn grTexDownloadTablePartial(ty: u32, data: *const c_void, start: c_int, end: c_int) {
+pub unsafe extern "C" fn grTexDownloadTablePartial(
+    ty: u32,
+    data: *const c_void,
+    start: c_int,
+    end: c_int,
+) {
     // SAFETY: forwarded table pointer.
     unsafe { download_table(0, ty, data, start.max(0) as usize, end.max(0) as usize) };
 }

@@ -112,7 +112,8 @@ fn fetch_byte(v: &[f32], off: i32) -> f32 {
     let Ok(o) = usize::try_from(off) else {
         return 0.0;
     };
-    v.get(o / 4).map_or(0.0, |w| f32::from(w.to_bits().to_le_bytes()[o % 4]))
+    v.get(o / 4)
+        .map_or(0.0, |w| f32::from(w.to_bits().to_le_bytes()[o % 4]))
 }
 
 fn value(v: &[f32], e: Entry) -> f32 {
@@ -165,7 +166,11 @@ impl crate::Glide {
         }
         let fbz = st.fbi.fbz_mode;
         if fbz & ENDEPTHBUFFER != 0 {
-            p |= if fbz & WBUFFER != 0 { req::OOW_FBI } else { req::OOZ };
+            p |= if fbz & WBUFFER != 0 {
+                req::OOW_FBI
+            } else {
+                req::OOZ
+            };
         }
         let fog = st.fbi.fog_mode;
         if fog & ENFOGGING != 0 {
@@ -179,7 +184,11 @@ impl crate::Glide {
         }
         let window = st.coordinate_space == GR_WINDOW_COORDS;
         if p & req::W_TMU0 != 0 {
-            let drop = if window { !l.qn[0].enabled } else { !l.qn[0].enabled && !l.q.enabled };
+            let drop = if window {
+                !l.qn[0].enabled
+            } else {
+                !l.qn[0].enabled && !l.q.enabled
+            };
             if drop {
                 p &= !req::W_TMU0;
             }
@@ -189,7 +198,11 @@ impl crate::Glide {
         }
         if p & req::W_TMU1 != 0 {
             // 3dfx's code clears the TMU0 bit here (not TMU1); kept for identical output.
-            let drop = if window { !l.qn[1].enabled } else { !l.qn[1].enabled && !l.q.enabled };
+            let drop = if window {
+                !l.qn[1].enabled
+            } else {
+                !l.qn[1].enabled && !l.q.enabled
+            };
             if drop {
                 p &= !req::W_TMU0;
             }
@@ -239,32 +252,68 @@ impl crate::Glide {
         if p & req::IT_DRGB != 0 {
             if l.packed_color {
                 let o = l.pargb.offset;
-                d.push(Entry::Byte { off: o + PARGB_R, reg: F_START_R });
-                d.push(Entry::Byte { off: o + PARGB_G, reg: F_START_G });
-                d.push(Entry::Byte { off: o + PARGB_B, reg: F_START_B });
+                d.push(Entry::Byte {
+                    off: o + PARGB_R,
+                    reg: F_START_R,
+                });
+                d.push(Entry::Byte {
+                    off: o + PARGB_G,
+                    reg: F_START_G,
+                });
+                d.push(Entry::Byte {
+                    off: o + PARGB_B,
+                    reg: F_START_B,
+                });
             } else {
                 let o = l.rgb.offset;
-                d.push(Entry::Float { off: o, reg: F_START_R });
-                d.push(Entry::Float { off: o + 4, reg: F_START_G });
-                d.push(Entry::Float { off: o + 8, reg: F_START_B });
+                d.push(Entry::Float {
+                    off: o,
+                    reg: F_START_R,
+                });
+                d.push(Entry::Float {
+                    off: o + 4,
+                    reg: F_START_G,
+                });
+                d.push(Entry::Float {
+                    off: o + 8,
+                    reg: F_START_B,
+                });
             }
         }
         if p & req::OOZ != 0 {
-            d.push(Entry::Float { off: l.z.offset, reg: F_START_Z });
+            d.push(Entry::Float {
+                off: l.z.offset,
+                reg: F_START_Z,
+            });
         }
         if p & req::IT_ALPHA != 0 {
             if l.packed_color {
-                d.push(Entry::Byte { off: l.pargb.offset + PARGB_A, reg: F_START_A });
+                d.push(Entry::Byte {
+                    off: l.pargb.offset + PARGB_A,
+                    reg: F_START_A,
+                });
             } else {
-                d.push(Entry::Float { off: l.a.offset, reg: F_START_A });
+                d.push(Entry::Float {
+                    off: l.a.offset,
+                    reg: F_START_A,
+                });
             }
         }
         if p & req::ST_TMU0 != 0 {
-            d.push(Entry::Float { off: l.st[0].offset, reg: F_START_S });
-            d.push(Entry::Float { off: l.st[0].offset + 4, reg: F_START_T });
+            d.push(Entry::Float {
+                off: l.st[0].offset,
+                reg: F_START_S,
+            });
+            d.push(Entry::Float {
+                off: l.st[0].offset + 4,
+                reg: F_START_T,
+            });
         }
         if p & req::OOW_FBI != 0 {
-            d.push(Entry::Float { off: l.q.offset, reg: F_START_W });
+            d.push(Entry::Float {
+                off: l.q.offset,
+                reg: F_START_W,
+            });
         }
         let w_source = |qn: Param| {
             if qn.enabled {
@@ -280,12 +329,21 @@ impl crate::Glide {
         let upper_tmus = tmu_chip(1) | tmu_chip(2);
         if p & req::W_TMU0 != 0 {
             d.push(Entry::Packer);
-            d.push(Entry::Float { off: w_source(l.qn[0]), reg: all_tmus | F_START_W });
+            d.push(Entry::Float {
+                off: w_source(l.qn[0]),
+                reg: all_tmus | F_START_W,
+            });
         }
         let packer_needed = if p & req::ST_TMU1 != 0 {
             d.push(Entry::Packer);
-            d.push(Entry::Float { off: l.st[1].offset, reg: upper_tmus | F_START_S });
-            d.push(Entry::Float { off: l.st[1].offset + 4, reg: upper_tmus | F_START_T });
+            d.push(Entry::Float {
+                off: l.st[1].offset,
+                reg: upper_tmus | F_START_S,
+            });
+            d.push(Entry::Float {
+                off: l.st[1].offset + 4,
+                reg: upper_tmus | F_START_T,
+            });
             false
         } else {
             true
@@ -294,7 +352,10 @@ impl crate::Glide {
             if packer_needed {
                 d.push(Entry::Packer);
             }
-            d.push(Entry::Float { off: w_source(l.qn[1]), reg: upper_tmus | F_START_W });
+            d.push(Entry::Float {
+                off: w_source(l.qn[1]),
+                reg: upper_tmus | F_START_W,
+            });
         }
         // A packer write after the last parameter if it went to a TMU-only address.
         if let Some(Entry::Float { reg, .. }) = d.last() {
@@ -358,11 +419,14 @@ impl crate::Glide {
         let mut dy_bc = yb - yc;
         // x87 evaluation: products and difference in extended precision, one rounding
         // to f32 on the store (the products of 12.4 coordinates are exact in f64).
-        let area = (f64::from(dx_ab) * f64::from(dy_bc) - f64::from(dx_bc) * f64::from(dy_ab)) as f32;
+        let area =
+            (f64::from(dx_ab) * f64::from(dy_bc) - f64::from(dx_bc) * f64::from(dy_ab)) as f32;
         if area.to_bits() & 0x7fff_ffff == 0 {
             return 0;
         }
-        if self.st.cull_mode != GR_CULL_DISABLE && ((area.to_bits() as i32) ^ ((cull << 31) as i32)) >= 0 {
+        if self.st.cull_mode != GR_CULL_DISABLE
+            && ((area.to_bits() as i32) ^ ((cull << 31) as i32)) >= 0
+        {
             return -1;
         }
         self.flush_state();
@@ -389,11 +453,21 @@ impl crate::Glide {
             // variables). Matches test04; UNVERIFIED: f64 stands in for the 80-bit
             // format, which can differ in the last bit for parameters whose
             // differences need more than 53 bits.
-            let (pa, pb, pc) = (f64::from(pa), f64::from(value(fb, e)), f64::from(value(fc, e)));
+            let (pa, pb, pc) = (
+                f64::from(pa),
+                f64::from(value(fb, e)),
+                f64::from(value(fc, e)),
+            );
             let dp_ab = pa - pb;
             let dp_bc = pb - pc;
-            self.hw.wf(reg + DPDX, (dp_ab * f64::from(dy_bc) - dp_bc * f64::from(dy_ab)) as f32);
-            self.hw.wf(reg + DPDY, (dp_bc * f64::from(dx_ab) - dp_ab * f64::from(dx_bc)) as f32);
+            self.hw.wf(
+                reg + DPDX,
+                (dp_ab * f64::from(dy_bc) - dp_bc * f64::from(dy_ab)) as f32,
+            );
+            self.hw.wf(
+                reg + DPDY,
+                (dp_bc * f64::from(dx_ab) - dp_ab * f64::from(dx_bc)) as f32,
+            );
         }
         self.hw.wf(F_TRIANGLE_CMD, area);
         self.stats.triangles_drawn += 1;
@@ -425,7 +499,10 @@ impl crate::Glide {
             }
         };
         put(l.xy.offset, fetch(v, l.xy.offset) * oow * vp.hwidth + vp.ox);
-        put(l.xy.offset + 4, fetch(v, l.xy.offset + 4) * oow * vp.hheight + vp.oy);
+        put(
+            l.xy.offset + 4,
+            fetch(v, l.xy.offset + 4) * oow * vp.hheight + vp.oy,
+        );
         if l.z.enabled {
             put(l.z.offset, fetch(v, l.z.offset) * oow * vp.hdepth + vp.oz);
         }
@@ -443,7 +520,10 @@ impl crate::Glide {
             if l.st[t].enabled {
                 let scale = self.st.tmu.get(t).map_or([256.0; 2], |c| c.st_scale);
                 put(l.st[t].offset, fetch(v, l.st[t].offset) * oow * scale[0]);
-                put(l.st[t].offset + 4, fetch(v, l.st[t].offset + 4) * oow * scale[1]);
+                put(
+                    l.st[t].offset + 4,
+                    fetch(v, l.st[t].offset + 4) * oow * scale[1],
+                );
             }
         }
         if l.q.enabled {
@@ -467,7 +547,11 @@ impl crate::Glide {
     /// `_grDrawPoints` (window coordinates): a one-pixel triangle at the pixel centre.
     pub(crate) fn point(&mut self, v: &[f32]) {
         self.flush_state();
-        let v = if self.st.coordinate_space == GR_WINDOW_COORDS { v.to_vec() } else { self.project(v) };
+        let v = if self.st.coordinate_space == GR_WINDOW_COORDS {
+            v.to_vec()
+        } else {
+            self.project(v)
+        };
         let v = v.as_slice();
         let xo = self.layout.xy.offset;
         // Adding 3 * 2^22 - 0.5 truncates to an integer (round-to-nearest on x - 0.5).
@@ -581,7 +665,9 @@ impl crate::Glide {
             GR_POINTS => v.iter().for_each(|p| self.point(p)),
             GR_LINE_STRIP => (1..n).for_each(|i| self.line(v[i - 1], v[i])),
             GR_LINES => (0..n / 2).for_each(|i| self.line(v[2 * i], v[2 * i + 1])),
-            GR_TRIANGLES => (0..n / 3).for_each(|i| self.triangle(v[3 * i], v[3 * i + 1], v[3 * i + 2])),
+            GR_TRIANGLES => {
+                (0..n / 3).for_each(|i| self.triangle(v[3 * i], v[3 * i + 1], v[3 * i + 2]))
+            }
             GR_TRIANGLE_STRIP | GR_TRIANGLE_STRIP_CONTINUE => {
                 let continuing = mode == GR_TRIANGLE_STRIP_CONTINUE && self.strip_tail.is_some();
                 let mut all: Vec<&[f32]> = Vec::with_capacity(n + 2);

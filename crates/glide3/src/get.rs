@@ -5,7 +5,9 @@
 //! 0xffff..0, version string "3.01.0001".
 
 use crate::consts::*;
-use sst1_regs::addr::{FBI_AFUNC_FAIL, FBI_CHROMA_FAIL, FBI_PIXELS_IN, FBI_PIXELS_OUT, FBI_ZFUNC_FAIL, STATUS};
+use sst1_regs::addr::{
+    FBI_AFUNC_FAIL, FBI_CHROMA_FAIL, FBI_PIXELS_IN, FBI_PIXELS_OUT, FBI_ZFUNC_FAIL, STATUS,
+};
 
 /// Entries in the fog table.
 pub const FOG_TABLE_SIZE: usize = 64;
@@ -75,8 +77,12 @@ impl crate::Glide {
                 let s = 0xffff - ((self.hw.r(STATUS) >> 12) & 0xffff);
                 vec![((s << 8) + (s >> 8)) as i32, s as i32]
             }
-            (GR_GLIDE_STATE_SIZE, 4) => vec![std::mem::size_of::<crate::state::GlideState>() as i32],
-            (GR_GLIDE_VERTEXLAYOUT_SIZE, 4) => vec![std::mem::size_of::<crate::draw::VertexLayout>() as i32],
+            (GR_GLIDE_STATE_SIZE, 4) => {
+                vec![std::mem::size_of::<crate::state::GlideState>() as i32]
+            }
+            (GR_GLIDE_VERTEXLAYOUT_SIZE, 4) => {
+                vec![std::mem::size_of::<crate::draw::VertexLayout>() as i32]
+            }
             (GR_FOG_TABLE_ENTRIES, 4) => vec![FOG_TABLE_SIZE as i32],
             (GR_GAMMA_TABLE_ENTRIES, 4) => vec![32],
             (GR_IS_BUSY, 4) => vec![i32::from(self.hw.r(STATUS) & (1 << 9) != 0)],
@@ -120,7 +126,10 @@ impl crate::Glide {
             _ => return 0,
         };
         if out.len() < vals.len() {
-            self.report(format!("grGet: output too small for selector {pname:#x}"), false);
+            self.report(
+                format!("grGet: output too small for selector {pname:#x}"),
+                false,
+            );
             return 0;
         }
         out[..vals.len()].copy_from_slice(&vals);

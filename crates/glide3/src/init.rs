@@ -79,7 +79,8 @@ const VIDEO_TILES_IN_X: u32 = 0xf << 4;
 const VIDEO_RESET: u32 = 1 << 8;
 const VIDEO_BLANK_EN: u32 = 1 << 12;
 const VIDEO_MASK: u32 = 0x7e7f_fe00;
-const VIDEO_OUTPUT_24BPP: u32 = (1 << 13) | (1 << 14) | (1 << 15) | (1 << 16) | (1 << 20) | (1 << 22);
+const VIDEO_OUTPUT_24BPP: u32 =
+    (1 << 13) | (1 << 14) | (1 << 15) | (1 << 16) | (1 << 20) | (1 << 22);
 const VIDEO_OUTPUT_16BPP: u32 = (1 << 13) | (1 << 14) | (1 << 15) | (1 << 16) | (3 << 20);
 const VIDEO_VCLK_2X_OUTPUT_DEL_SHIFT: u32 = 27;
 const VIDEO_VCLK_DEL_SHIFT: u32 = 29;
@@ -265,7 +266,11 @@ impl Init<'_> {
 
         // FT clock delay for 16 MHz bring-up: 8 on revision-2 FBIs, 0xa otherwise;
         // TREX-to-FBI FIFO threshold 8.
-        let ft_clk_del = if self.board.fbi_revision == 2 { 0x8 } else { 0xa };
+        let ft_clk_del = if self.board.fbi_revision == 2 {
+            0x8
+        } else {
+            0xa
+        };
         let fbi_init3 = (FBIINIT3_DEFAULT & !(FT_CLK_DEL | TF_FIFO_THRESH))
             | (ft_clk_del << FT_CLK_DEL_SHIFT)
             | (0x8 << TF_FIFO_THRESH_SHIFT);
@@ -301,7 +306,10 @@ impl Init<'_> {
         self.or(Fi::I3, ALT_REGMAPPING);
         self.field(Fi::I2, DRAM_REFRESH_CNTR, DRAM_REFRESH_16MS);
         self.or(Fi::I2, EN_DRAM_REFRESH);
-        self.or(Fi::I2, EN_FAST_RAS_READ | EN_DRAM_RD_AHEAD_FIFO | EN_FAST_RD_AHEAD_WR);
+        self.or(
+            Fi::I2,
+            EN_FAST_RAS_READ | EN_DRAM_RD_AHEAD_FIFO | EN_FAST_RD_AHEAD_WR,
+        );
         self.set_resolution(&V640X480_60, false);
 
         // Exercise the DRAMs: clear a 100x100 corner of front buffer and aux buffer.
@@ -322,14 +330,23 @@ impl Init<'_> {
         // LFB and texture writes go through the memory FIFO.
         self.or(Fi::I0, EN_LFB_MEMFIFO);
         self.or(Fi::I0, EN_TEX_MEMFIFO);
-        for a in [V_RETRACE, BACK_PORCH, VIDEO_DIMENSIONS, H_SYNC, V_SYNC, MAX_RGB_DELTA] {
+        for a in [
+            V_RETRACE,
+            BACK_PORCH,
+            VIDEO_DIMENSIONS,
+            H_SYNC,
+            V_SYNC,
+            MAX_RGB_DELTA,
+        ] {
             self.hw.w(a, 0);
         }
     }
 
     /// `sst1InitRenderingRegisters`: zero every rendering register, then idle.
     fn clear_rendering_registers(&mut self) {
-        for a in [VERTEX_AX, VERTEX_AY, VERTEX_BX, VERTEX_BY, VERTEX_CX, VERTEX_CY] {
+        for a in [
+            VERTEX_AX, VERTEX_AY, VERTEX_BX, VERTEX_BY, VERTEX_CX, VERTEX_CY,
+        ] {
             self.hw.w(a, 0);
         }
         for a in (START_R..=START_W).step_by(4) {
@@ -451,14 +468,22 @@ impl Init<'_> {
 
     fn set_vid_mode(&mut self, video16bpp: bool) {
         let saved = self.dac_window_open();
-        self.dac_wr(ICS_CMD, if video16bpp { ICS_COLORMODE_16BPP } else { ICS_COLORMODE_24BPP });
+        self.dac_wr(
+            ICS_CMD,
+            if video16bpp {
+                ICS_COLORMODE_16BPP
+            } else {
+                ICS_COLORMODE_24BPP
+            },
+        );
         self.dac_window_close(saved);
     }
 
     /// `sst1InitSetResolution`: buffer offset (and banking) in fbiInit2, tiles in X in
     /// fbiInit1.
     fn set_resolution(&mut self, t: &VideoTiming, banked: bool) {
-        let mut v = (self.get(Fi::I2) & !VIDEO_BUFFER_OFFSET) | (t.mem_offset << VIDEO_BUFFER_OFFSET_SHIFT);
+        let mut v =
+            (self.get(Fi::I2) & !VIDEO_BUFFER_OFFSET) | (t.mem_offset << VIDEO_BUFFER_OFFSET_SHIFT);
         if banked {
             v |= DRAM_BANKING_CONFIG | EN_DRAM_BANKED;
         }
@@ -487,7 +512,14 @@ impl Init<'_> {
         self.idle();
         self.hw.w(LFB_MODE, LFB_FORMAT_ZZ | LFB_READ_AUX);
         self.idle();
-        for (x, y, v) in [(128, 100, 0xdead), (0, 0, 0), (798, 599, 0xffff), (200, 200, 0x55aa), (20, 20, 0xffff), (400, 400, 0)] {
+        for (x, y, v) in [
+            (128, 100, 0xdead),
+            (0, 0, 0),
+            (798, 599, 0xffff),
+            (200, 200, 0x55aa),
+            (20, 20, 0xffff),
+            (400, 400, 0),
+        ] {
             self.lfb_put(x, y, v);
         }
         self.idle();
@@ -515,7 +547,14 @@ impl Init<'_> {
             } else {
                 self.hw.w(LFB_MODE, 0);
                 self.idle();
-                for (x, y, v) in [(10, 10, 0xdead), (8, 8, 0), (340, 340, 0xffff), (100, 200, 0x5a5a), (66, 0, 0), (360, 360, 0xffff)] {
+                for (x, y, v) in [
+                    (10, 10, 0xdead),
+                    (8, 8, 0),
+                    (340, 340, 0xffff),
+                    (100, 200, 0x5a5a),
+                    (66, 0, 0),
+                    (360, 360, 0xffff),
+                ] {
                     self.lfb_put(x, y, v);
                 }
                 self.idle();
@@ -572,7 +611,10 @@ impl Init<'_> {
         }
         // Make every TMU output its configuration straps and render them.
         for t in 0..3 {
-            self.hw.w(tmu_chip(t) | TREX_INIT1, self.st.tmu_init1[t] | TEX_SEND_CONFIG);
+            self.hw.w(
+                tmu_chip(t) | TREX_INIT1,
+                self.st.tmu_init1[t] | TEX_SEND_CONFIG,
+            );
         }
         self.hw.w(FBZ_COLOR_PATH, FBZCP_RGBSEL_TMU | FBZCP_TEXTURE);
         self.hw.w(TEX_BASE_ADDR, 0);
@@ -613,7 +655,10 @@ impl Init<'_> {
         const SENSE: [u32; 3] = [0x92f5_6eb0, 0xf2a9_16b5, 0xbadb_eef1];
         let tex = TEX_BASE + ((t as u32) << 21);
         self.idle();
-        self.hw.w(tmu_chip(t) | TREX_INIT0, init | (self.st.tmu_init0[t] & !0x7000));
+        self.hw.w(
+            tmu_chip(t) | TREX_INIT0,
+            init | (self.st.tmu_init0[t] & !0x7000),
+        );
         self.idle();
         for (i, base) in [0x20_0000u32, 0x10_0000, 0].into_iter().enumerate() {
             self.hw.w(TEX_BASE_ADDR, base >> 3);
@@ -641,13 +686,25 @@ impl Init<'_> {
         self.hw.pci(PCI_VCLK_ENABLE, 0);
         self.hw.w(H_SYNC, (t.h_sync_off << 16) | t.h_sync_on);
         self.hw.w(V_SYNC, (t.v_sync_off << 16) | t.v_sync_on);
-        self.hw.w(BACK_PORCH, (t.v_back_porch << 16) | t.h_back_porch);
-        self.hw.w(VIDEO_DIMENSIONS, (t.y_dimension << 16) | (t.x_dimension - 1));
+        self.hw
+            .w(BACK_PORCH, (t.v_back_porch << 16) | t.h_back_porch);
+        self.hw.w(
+            VIDEO_DIMENSIONS,
+            (t.y_dimension << 16) | (t.x_dimension - 1),
+        );
         self.set_resolution(&t, b.fbi_mb == 4);
 
-        let vfifo = if b.grx_clk_mhz < 45 { t.v_fifo_threshold - 4 } else { t.v_fifo_threshold };
+        let vfifo = if b.grx_clk_mhz < 45 {
+            t.v_fifo_threshold - 4
+        } else {
+            t.v_fifo_threshold
+        };
         self.field(Fi::I3, VIDEO_FIFO_THRESH, vfifo << VIDEO_FIFO_THRESH_SHIFT);
-        self.field(Fi::I3, YORIGIN_TOP, (t.y_dimension - 1) << YORIGIN_TOP_SHIFT);
+        self.field(
+            Fi::I3,
+            YORIGIN_TOP,
+            (t.y_dimension - 1) << YORIGIN_TOP_SHIFT,
+        );
 
         // Memory FIFO: low water mark 23, high 54, PCI FIFO low water 13.
         let (mem_lwm, mem_hwm, pci_lwm) = (23u32, 54u32, 13u32);
@@ -658,9 +715,14 @@ impl Init<'_> {
             _ => 0x3ff,
         };
         self.or(Fi::I4, roll << MEM_FIFO_ROW_ROLL_SHIFT);
-        let small = (b.fbi_mb == 1 && matches!(mode.monitor, Monitor::R512x384 | Monitor::R512x256))
+        let small = (b.fbi_mb == 1
+            && matches!(mode.monitor, Monitor::R512x384 | Monitor::R512x256))
             || (b.fbi_mb == 2 && matches!(mode.monitor, Monitor::R800x600 | Monitor::R856x480));
-        let row_base = if small { 2 * t.mem_offset } else { 3 * t.mem_offset };
+        let row_base = if small {
+            2 * t.mem_offset
+        } else {
+            3 * t.mem_offset
+        };
         self.or(Fi::I4, row_base << MEM_FIFO_ROW_BASE_SHIFT);
         self.or(Fi::I4, mem_lwm << MEM_FIFO_LWM_SHIFT);
         self.field(Fi::I0, PCI_FIFO_LWM, pci_lwm << PCI_FIFO_LWM_SHIFT);
@@ -694,7 +756,8 @@ impl Init<'_> {
             0
         };
         let v_out_del = if rev2 { 2 } else { 0 };
-        let delays = (v_in_del << VIDEO_VCLK_DEL_SHIFT) | (v_out_del << VIDEO_VCLK_2X_OUTPUT_DEL_SHIFT);
+        let delays =
+            (v_in_del << VIDEO_VCLK_DEL_SHIFT) | (v_out_del << VIDEO_VCLK_2X_OUTPUT_DEL_SHIFT);
         if video16 {
             self.field(Fi::I1, VIDEO_MASK, VIDEO_OUTPUT_16BPP | delays);
         } else {
@@ -733,7 +796,11 @@ impl Init<'_> {
             self.set_grx_clk(b.grx_clk_mhz as f32);
         }
         self.set_vid_mode(video16);
-        self.set_vid_clk(if video16 { t.clk_freq_16bpp } else { t.clk_freq_24bpp });
+        self.set_vid_clk(if video16 {
+            t.clk_freq_16bpp
+        } else {
+            t.clk_freq_24bpp
+        });
 
         self.and_not(Fi::I1, VIDEO_RESET);
         self.or(Fi::I2, EN_DRAM_REFRESH);
@@ -778,7 +845,10 @@ impl Init<'_> {
         self.and_not(Fi::I1, VIDEO_RESET);
         for x in 0..32u32 {
             let e = x << 3;
-            self.hw.w(CLUT_DATA, (x << 24) | (curve(e, r) << 16) | (curve(e, g) << 8) | curve(e, b));
+            self.hw.w(
+                CLUT_DATA,
+                (x << 24) | (curve(e, r) << 16) | (curve(e, g) << 8) | curve(e, b),
+            );
         }
         self.hw.w(CLUT_DATA, (32 << 24) | 0xff_ffff);
     }

@@ -32,7 +32,9 @@ const LFB_FORMAT: u32 = 0xf;
 /// per word; 32-bit modes use one word per pixel).
 pub(crate) fn stride_for(mode: u32) -> u32 {
     match mode {
-        GR_LFBWRITEMODE_565 | GR_LFBWRITEMODE_555 | GR_LFBWRITEMODE_1555 | GR_LFBWRITEMODE_ZA16 => 2048,
+        GR_LFBWRITEMODE_565 | GR_LFBWRITEMODE_555 | GR_LFBWRITEMODE_1555 | GR_LFBWRITEMODE_ZA16 => {
+            2048
+        }
         _ => 4096,
     }
 }
@@ -40,7 +42,14 @@ pub(crate) fn stride_for(mode: u32) -> u32 {
 impl crate::Glide {
     /// `grLfbLock`. `None` when the lock is refused (already locked, bad buffer or
     /// reserved write mode); the registers are only written for accepted locks.
-    pub(crate) fn lfb_lock_hw(&mut self, ty: u32, buffer: u32, write_mode: u32, origin: u32, pipeline: bool) -> Option<LfbInfo> {
+    pub(crate) fn lfb_lock_hw(
+        &mut self,
+        ty: u32,
+        buffer: u32,
+        write_mode: u32,
+        origin: u32,
+        pipeline: bool,
+    ) -> Option<LfbInfo> {
         self.validate();
         let ty = ty & !GR_LFB_NOIDLE;
         let slot = usize::from(ty == GR_LFB_WRITE_ONLY);
@@ -59,21 +68,43 @@ impl crate::Glide {
             self.hw.w(LFB_MODE, l);
             self.st.fbi.lfb_mode = l;
             self.lfb_locks[slot] = Some(buffer);
-            return Some(LfbInfo { stride_in_bytes: 2048, write_mode: self.st.fbi.lfb_mode & LFB_FORMAT, origin });
+            return Some(LfbInfo {
+                stride_in_bytes: 2048,
+                write_mode: self.st.fbi.lfb_mode & LFB_FORMAT,
+                origin,
+            });
         }
-        if (3..=11).contains(&write_mode) && write_mode != GR_LFBWRITEMODE_888 && write_mode != GR_LFBWRITEMODE_8888 {
+        if (3..=11).contains(&write_mode)
+            && write_mode != GR_LFBWRITEMODE_888
+            && write_mode != GR_LFBWRITEMODE_8888
+        {
             return None;
         }
         let (sel, mode) = match buffer {
             GR_BUFFER_FRONTBUFFER | GR_BUFFER_BACKBUFFER => {
-                let m = if write_mode == GR_LFBWRITEMODE_ANY { GR_LFBWRITEMODE_565 } else { write_mode };
+                let m = if write_mode == GR_LFBWRITEMODE_ANY {
+                    GR_LFBWRITEMODE_565
+                } else {
+                    write_mode
+                };
                 if m == GR_LFBWRITEMODE_ZA16 {
                     return None;
                 }
-                (if buffer == GR_BUFFER_BACKBUFFER { LFB_WRITE_BACK } else { 0 }, m)
+                (
+                    if buffer == GR_BUFFER_BACKBUFFER {
+                        LFB_WRITE_BACK
+                    } else {
+                        0
+                    },
+                    m,
+                )
             }
             GR_BUFFER_AUXBUFFER => {
-                let m = if write_mode == GR_LFBWRITEMODE_ANY { GR_LFBWRITEMODE_ZA16 } else { write_mode };
+                let m = if write_mode == GR_LFBWRITEMODE_ANY {
+                    GR_LFBWRITEMODE_ZA16
+                } else {
+                    write_mode
+                };
                 if m != GR_LFBWRITEMODE_ZA16 {
                     return None;
                 }
@@ -81,10 +112,12 @@ impl crate::Glide {
             }
             _ => return None,
         };
-        let za = (self.st.lfb_constant_depth & 0xffff) | (u32::from(self.st.lfb_constant_alpha) << 24);
+        let za =
+            (self.st.lfb_constant_depth & 0xffff) | (u32::from(self.st.lfb_constant_alpha) << 24);
         self.hw.w(ZA_COLOR, za);
         let mut fbz = self.st.fbi.fbz_mode & !ENZBIAS;
-        let mut l = self.st.fbi.lfb_mode & !(LFB_WRITEBUF | LFB_YORIGIN | LFB_FORMAT | LFB_ENPIXPIPE);
+        let mut l =
+            self.st.fbi.lfb_mode & !(LFB_WRITEBUF | LFB_YORIGIN | LFB_FORMAT | LFB_ENPIXPIPE);
         l |= sel | mode | yorigin;
         if pipeline {
             l |= LFB_ENPIXPIPE;
@@ -94,7 +127,11 @@ impl crate::Glide {
         self.st.fbi.lfb_mode = l;
         self.hw.w(FBZ_MODE, fbz);
         self.lfb_locks[slot] = Some(buffer);
-        Some(LfbInfo { stride_in_bytes: stride_for(mode), write_mode: mode, origin })
+        Some(LfbInfo {
+            stride_in_bytes: stride_for(mode),
+            write_mode: mode,
+            origin,
+        })
     }
 
     /// `grLfbUnlock`: restore depth bias and `fbzMode`. False if not locked.
@@ -126,7 +163,13 @@ impl crate::Glide {
         if format == GR_LFB_SRC_FMT_RLE16 {
             return false;
         }
-        let Some(info) = self.lfb_lock_hw(GR_LFB_WRITE_ONLY | GR_LFB_NOIDLE, buffer, format, GR_ORIGIN_UPPER_LEFT, pipeline) else {
+        let Some(info) = self.lfb_lock_hw(
+            GR_LFB_WRITE_ONLY | GR_LFB_NOIDLE,
+            buffer,
+            format,
+            GR_ORIGIN_UPPER_LEFT,
+            pipeline,
+        ) else {
             return false;
         };
         let byte = |i: usize| u32::from(src.get(i).copied().unwrap_or(0));
@@ -164,8 +207,26 @@ impl crate::Glide {
     }
 
     /// `grLfbReadRegion`: 16-bit pixels of `buffer` into `dst` (`stride` bytes per row).
-    pub(crate) fn lfb_read_region_hw(&mut self, buffer: u32, x: u32, y: u32, width: u32, height: u32, stride: usize, dst: &mut [u8]) -> bool {
-        if self.lfb_lock_hw(GR_LFB_READ_ONLY, buffer, GR_LFBWRITEMODE_ANY, GR_ORIGIN_UPPER_LEFT, false).is_none() {
+    pub(crate) fn lfb_read_region_hw(
+        &mut self,
+        buffer: u32,
+        x: u32,
+        y: u32,
+        width: u32,
+        height: u32,
+        stride: usize,
+        dst: &mut [u8],
+    ) -> bool {
+        if self
+            .lfb_lock_hw(
+                GR_LFB_READ_ONLY,
+                buffer,
+                GR_LFBWRITEMODE_ANY,
+                GR_ORIGIN_UPPER_LEFT,
+                false,
+            )
+            .is_none()
+        {
             return false;
         }
         for row in 0..height {

@@ -98,7 +98,10 @@ pub struct Glide {
 
 impl std::fmt::Debug for Glide {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Glide").field("board", &self.board).field("open", &self.open).finish_non_exhaustive()
+        f.debug_struct("Glide")
+            .field("board", &self.board)
+            .field("open", &self.open)
+            .finish_non_exhaustive()
     }
 }
 
@@ -127,7 +130,12 @@ impl Glide {
             error_cb: None,
             last_error: None,
         };
-        Init { hw: &mut g.hw, st: &mut g.init, board: &g.board }.power_on();
+        Init {
+            hw: &mut g.hw,
+            st: &mut g.init,
+            board: &g.board,
+        }
+        .power_on();
         g
     }
 
@@ -170,7 +178,11 @@ impl Glide {
 
     fn check_tmu(&mut self, call: &str, tmu: u32) -> bool {
         let bad = tmu >= self.board.tmus;
-        self.check(bad, call, &format!("invalid TMU {tmu} (board has {})", self.board.tmus))
+        self.check(
+            bad,
+            call,
+            &format!("invalid TMU {tmu} (board has {})", self.board.tmus),
+        )
     }
 
     /// The probe results Glide is using.
@@ -217,32 +229,64 @@ impl Glide {
 
     /// `grSstWinOpen`: set the video mode, reset the rendering state to Glide's
     /// defaults and load them into the chip. False for modes the board cannot show.
-    pub fn win_open(&mut self, resolution: u32, refresh: u32, color_format: u32, origin: u32, color_buffers: i32, aux_buffers: i32) -> bool {
+    pub fn win_open(
+        &mut self,
+        resolution: u32,
+        refresh: u32,
+        color_format: u32,
+        origin: u32,
+        color_buffers: i32,
+        aux_buffers: i32,
+    ) -> bool {
         if self.open {
             self.report("grSstWinOpen: gc opened twice!".into(), false);
             return false;
         }
         let Some(mode) = video::find_mode(resolution, refresh) else {
-            self.report(format!("grSstWinOpen: unsupported resolution {resolution:#x} / refresh {refresh:#x}"), false);
+            self.report(
+                format!(
+                    "grSstWinOpen: unsupported resolution {resolution:#x} / refresh {refresh:#x}"
+                ),
+                false,
+            );
             return false;
         };
-        if color_format > GR_COLORFORMAT_BGRA || !(2..=3).contains(&color_buffers) || !(0..=1).contains(&aux_buffers) {
-            self.report("grSstWinOpen: invalid color format or buffer count".into(), false);
+        if color_format > GR_COLORFORMAT_BGRA
+            || !(2..=3).contains(&color_buffers)
+            || !(0..=1).contains(&aux_buffers)
+        {
+            self.report(
+                "grSstWinOpen: invalid color format or buffer count".into(),
+                false,
+            );
             return false;
         }
         let small = self.board.fbi_mb <= 2;
         if small
-            && ((matches!(resolution, GR_RESOLUTION_800x600 | GR_RESOLUTION_856x480) && color_buffers + aux_buffers >= 3)
+            && ((matches!(resolution, GR_RESOLUTION_800x600 | GR_RESOLUTION_856x480)
+                && color_buffers + aux_buffers >= 3)
                 || resolution == GR_RESOLUTION_960x720)
         {
-            self.report("grSstWinOpen: insufficient frame-buffer memory for this mode".into(), false);
+            self.report(
+                "grSstWinOpen: insufficient frame-buffer memory for this mode".into(),
+                false,
+            );
             return false;
         }
-        Init { hw: &mut self.hw, st: &mut self.init, board: &self.board }.video(&mode);
+        Init {
+            hw: &mut self.hw,
+            st: &mut self.init,
+            board: &self.board,
+        }
+        .video(&mode);
         self.open = true;
 
         // Texture download sequencing exists from TMU revision 1 on.
-        let tex_mode = if self.board.tmu_revision == 0 { 0 } else { SEQ_8_DOWNLD };
+        let tex_mode = if self.board.tmu_revision == 0 {
+            0
+        } else {
+            SEQ_8_DOWNLD
+        };
         let mut st = GlideState::new(self.board.tmus as usize, tex_mode);
         st.screen_width = mode.timing.x_dimension;
         st.screen_height = mode.timing.y_dimension;
@@ -262,8 +306,20 @@ impl Glide {
         self.chromakey_mode(GR_CHROMAKEY_DISABLE);
         self.constant_color_value(!0);
         self.clip_window(0, 0, w, h);
-        self.color_combine(GR_COMBINE_FUNCTION_SCALE_OTHER, GR_COMBINE_FACTOR_ONE, GR_COMBINE_LOCAL_ITERATED, GR_COMBINE_OTHER_ITERATED, false);
-        self.alpha_combine(GR_COMBINE_FUNCTION_SCALE_OTHER, GR_COMBINE_FACTOR_ONE, GR_COMBINE_LOCAL_NONE, GR_COMBINE_OTHER_CONSTANT, false);
+        self.color_combine(
+            GR_COMBINE_FUNCTION_SCALE_OTHER,
+            GR_COMBINE_FACTOR_ONE,
+            GR_COMBINE_LOCAL_ITERATED,
+            GR_COMBINE_OTHER_ITERATED,
+            false,
+        );
+        self.alpha_combine(
+            GR_COMBINE_FUNCTION_SCALE_OTHER,
+            GR_COMBINE_FACTOR_ONE,
+            GR_COMBINE_LOCAL_NONE,
+            GR_COMBINE_OTHER_CONSTANT,
+            false,
+        );
         self.color_mask(true, false);
         self.cull_mode(GR_CULL_DISABLE);
         self.depth_bias_level(0);
@@ -280,10 +336,22 @@ impl Glide {
         for tmu in (0..self.board.tmus).rev() {
             self.tex_clamp_mode(tmu, GR_TEXTURECLAMP_CLAMP, GR_TEXTURECLAMP_CLAMP);
             self.tex_detail_control(tmu, 0, 1, 1.0);
-            self.tex_filter_mode(tmu, GR_TEXTUREFILTER_POINT_SAMPLED, GR_TEXTUREFILTER_POINT_SAMPLED);
+            self.tex_filter_mode(
+                tmu,
+                GR_TEXTUREFILTER_POINT_SAMPLED,
+                GR_TEXTUREFILTER_POINT_SAMPLED,
+            );
             self.tex_lod_bias_value(tmu, 0.0);
             self.tex_mipmap_mode(tmu, GR_MIPMAP_DISABLE, false);
-            self.tex_combine(tmu, GR_COMBINE_FUNCTION_ZERO, GR_COMBINE_FACTOR_NONE, GR_COMBINE_FUNCTION_ZERO, GR_COMBINE_FACTOR_NONE, false, false);
+            self.tex_combine(
+                tmu,
+                GR_COMBINE_FUNCTION_ZERO,
+                GR_COMBINE_FACTOR_NONE,
+                GR_COMBINE_FUNCTION_ZERO,
+                GR_COMBINE_FACTOR_NONE,
+                false,
+                false,
+            );
         }
         self.lfb_constant_alpha(0xff);
         self.lfb_constant_depth(0);
@@ -309,7 +377,10 @@ impl Glide {
     /// `grGlideSetState`: restore a saved state and reload every state register.
     pub fn set_state(&mut self, state: &GlideState) {
         if state.tmu.len() != self.st.tmu.len() {
-            self.report("grGlideSetState: state saved for a different TMU count".into(), false);
+            self.report(
+                "grGlideSetState: state saved for a different TMU count".into(),
+                false,
+            );
             return;
         }
         if (self.st.fbi.fbz_color_path ^ state.fbi.fbz_color_path) & hw::bits::ENTEXTUREMAP != 0 {
@@ -338,7 +409,13 @@ impl Glide {
 
     /// `grAlphaBlendFunction`.
     pub fn alpha_blend_function(&mut self, rgb_sf: u32, rgb_df: u32, alpha_sf: u32, alpha_df: u32) {
-        if self.check([rgb_sf, rgb_df, alpha_sf, alpha_df].iter().any(|&f| f > GR_BLEND_ALPHA_SATURATE), "grAlphaBlendFunction", "blend factor out of range") {
+        if self.check(
+            [rgb_sf, rgb_df, alpha_sf, alpha_df]
+                .iter()
+                .any(|&f| f > GR_BLEND_ALPHA_SATURATE),
+            "grAlphaBlendFunction",
+            "blend factor out of range",
+        ) {
             return;
         }
         self.dirty(dirty::ALPHA_MODE);
@@ -347,7 +424,11 @@ impl Glide {
 
     /// `grAlphaTestFunction`.
     pub fn alpha_test_function(&mut self, f: u32) {
-        if self.check(f > GR_CMP_ALWAYS, "grAlphaTestFunction", "invalid compare function") {
+        if self.check(
+            f > GR_CMP_ALWAYS,
+            "grAlphaTestFunction",
+            "invalid compare function",
+        ) {
             return;
         }
         self.dirty(dirty::ALPHA_MODE);
@@ -362,17 +443,35 @@ impl Glide {
 
     fn combine_ok(&mut self, call: &str, c: &Combine, local_max: u32) -> bool {
         let bad = c.function > GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA
-            || (c.function > GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL && c.function < GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA)
+            || (c.function > GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL
+                && c.function < GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA)
             || (c.factor & 7) > GR_COMBINE_FACTOR_TEXTURE_ALPHA
             || c.factor > GR_COMBINE_FACTOR_ONE_MINUS_TEXTURE_ALPHA
             || c.local > local_max
             || c.other > GR_COMBINE_OTHER_CONSTANT;
-        !self.check(bad, call, "unsupported combine function, factor, local or other")
+        !self.check(
+            bad,
+            call,
+            "unsupported combine function, factor, local or other",
+        )
     }
 
     /// `grColorCombine`.
-    pub fn color_combine(&mut self, function: u32, factor: u32, local: u32, other: u32, invert: bool) {
-        let c = Combine { function, factor, local, other, invert };
+    pub fn color_combine(
+        &mut self,
+        function: u32,
+        factor: u32,
+        local: u32,
+        other: u32,
+        invert: bool,
+    ) {
+        let c = Combine {
+            function,
+            factor,
+            local,
+            other,
+            invert,
+        };
         if self.combine_ok("grColorCombine", &c, GR_COMBINE_LOCAL_CONSTANT) {
             self.dirty(dirty::FBZ_COLOR_PATH);
             self.st.args.color_combine = c;
@@ -380,8 +479,21 @@ impl Glide {
     }
 
     /// `grAlphaCombine`.
-    pub fn alpha_combine(&mut self, function: u32, factor: u32, local: u32, other: u32, invert: bool) {
-        let c = Combine { function, factor, local, other, invert };
+    pub fn alpha_combine(
+        &mut self,
+        function: u32,
+        factor: u32,
+        local: u32,
+        other: u32,
+        invert: bool,
+    ) {
+        let c = Combine {
+            function,
+            factor,
+            local,
+            other,
+            invert,
+        };
         if self.combine_ok("grAlphaCombine", &c, GR_COMBINE_LOCAL_DEPTH) {
             self.dirty(dirty::FBZ_COLOR_PATH);
             self.st.args.alpha_combine = c;
@@ -396,7 +508,11 @@ impl Glide {
 
     /// `grChromakeyMode`.
     pub fn chromakey_mode(&mut self, mode: u32) {
-        if self.check(mode > GR_CHROMAKEY_ENABLE, "grChromakeyMode", "invalid mode") {
+        if self.check(
+            mode > GR_CHROMAKEY_ENABLE,
+            "grChromakeyMode",
+            "invalid mode",
+        ) {
             return;
         }
         self.dirty(dirty::FBZ_MODE);
@@ -425,7 +541,11 @@ impl Glide {
 
     /// `grDepthBufferFunction`.
     pub fn depth_buffer_function(&mut self, f: u32) {
-        if self.check(f > GR_CMP_ALWAYS, "grDepthBufferFunction", "invalid compare function") {
+        if self.check(
+            f > GR_CMP_ALWAYS,
+            "grDepthBufferFunction",
+            "invalid compare function",
+        ) {
             return;
         }
         self.dirty(dirty::FBZ_MODE);
@@ -434,7 +554,11 @@ impl Glide {
 
     /// `grDepthBufferMode`.
     pub fn depth_buffer_mode(&mut self, mode: u32) {
-        if self.check(mode > GR_DEPTHBUFFER_WBUFFER_COMPARE_TO_BIAS, "grDepthBufferMode", "invalid depth buffer mode") {
+        if self.check(
+            mode > GR_DEPTHBUFFER_WBUFFER_COMPARE_TO_BIAS,
+            "grDepthBufferMode",
+            "invalid depth buffer mode",
+        ) {
             return;
         }
         self.dirty(dirty::FBZ_MODE);
@@ -452,7 +576,11 @@ impl Glide {
 
     /// `grRenderBuffer`.
     pub fn render_buffer(&mut self, buffer: u32) {
-        if self.check(buffer >= GR_BUFFER_AUXBUFFER, "grRenderBuffer", "invalid buffer") {
+        if self.check(
+            buffer >= GR_BUFFER_AUXBUFFER,
+            "grRenderBuffer",
+            "invalid buffer",
+        ) {
             return;
         }
         self.dirty(dirty::FBZ_MODE);
@@ -467,7 +595,11 @@ impl Glide {
 
     /// `grSstOrigin`.
     pub fn sst_origin(&mut self, origin: u32) {
-        if self.check(origin > GR_ORIGIN_LOWER_LEFT, "grSstOrigin", "invalid origin") {
+        if self.check(
+            origin > GR_ORIGIN_LOWER_LEFT,
+            "grSstOrigin",
+            "invalid origin",
+        ) {
             return;
         }
         self.dirty(dirty::FBZ_MODE);
@@ -488,7 +620,11 @@ impl Glide {
 
     /// `grFogMode`.
     pub fn fog_mode(&mut self, mode: u32) {
-        if self.check((mode & 0xff) > GR_FOG_WITH_ITERATED_ALPHA_EXT || mode & !0x3ff != 0, "grFogMode", "invalid fog mode") {
+        if self.check(
+            (mode & 0xff) > GR_FOG_WITH_ITERATED_ALPHA_EXT || mode & !0x3ff != 0,
+            "grFogMode",
+            "invalid fog mode",
+        ) {
             return;
         }
         self.dirty(dirty::FOG_MODE);
@@ -510,14 +646,21 @@ impl Glide {
             let next = if i == 31 { e1 } else { table[2 * i + 2] };
             let d0 = e1.wrapping_sub(e0).wrapping_shl(2);
             let d1 = next.wrapping_sub(e1).wrapping_shl(2);
-            let v = (u32::from(e1) << 24) | (u32::from(d1) << 16) | (u32::from(e0) << 8) | u32::from(d0);
+            let v = (u32::from(e1) << 24)
+                | (u32::from(d1) << 16)
+                | (u32::from(e0) << 8)
+                | u32::from(d0);
             self.hw.w(FOG_TABLE + 4 * i as u32, v);
         }
     }
 
     /// `grLfbWriteColorFormat`.
     pub fn lfb_write_color_format(&mut self, format: u32) {
-        if self.check(format > GR_COLORFORMAT_BGRA, "grLfbWriteColorFormat", "invalid color format") {
+        if self.check(
+            format > GR_COLORFORMAT_BGRA,
+            "grLfbWriteColorFormat",
+            "invalid color format",
+        ) {
             return;
         }
         self.dirty(dirty::LFB_MODE);
@@ -580,7 +723,11 @@ impl Glide {
 
     /// `grCoordinateSpace`.
     pub fn coordinate_space(&mut self, mode: u32) {
-        if self.check(mode > GR_CLIP_COORDS, "grCoordinateSpace", "invalid coordinate space") {
+        if self.check(
+            mode > GR_CLIP_COORDS,
+            "grCoordinateSpace",
+            "invalid coordinate space",
+        ) {
             return;
         }
         self.st.coordinate_space = mode;
@@ -616,12 +763,21 @@ impl Glide {
 
     /// `grVertexLayout`: `param` is a `GR_PARAM_*`, `offset` in bytes.
     pub fn vertex_layout(&mut self, param: u32, offset: i32, mode: u32) {
-        if self.check(offset < 0 || offset % 4 != 0 || offset > 1024, "grVertexLayout", "offset must be a non-negative multiple of 4")
-            || self.check(mode > GR_PARAM_ENABLE, "grVertexLayout", "mode must be GR_PARAM_ENABLE or GR_PARAM_DISABLE")
-        {
+        if self.check(
+            offset < 0 || offset % 4 != 0 || offset > 1024,
+            "grVertexLayout",
+            "offset must be a non-negative multiple of 4",
+        ) || self.check(
+            mode > GR_PARAM_ENABLE,
+            "grVertexLayout",
+            "mode must be GR_PARAM_ENABLE or GR_PARAM_DISABLE",
+        ) {
             return;
         }
-        let p = draw::Param { offset, enabled: mode == GR_PARAM_ENABLE };
+        let p = draw::Param {
+            offset,
+            enabled: mode == GR_PARAM_ENABLE,
+        };
         let l = &mut self.layout;
         match param {
             GR_PARAM_XY => l.xy = p,
@@ -650,7 +806,10 @@ impl Glide {
             GR_PARAM_ST0..=GR_PARAM_ST2 => l.st[(param - GR_PARAM_ST0) as usize] = p,
             GR_PARAM_Q0..=GR_PARAM_Q2 => l.qn[(param - GR_PARAM_Q0) as usize] = p,
             _ => {
-                self.report(format!("grVertexLayout: unknown parameter {param:#x}"), false);
+                self.report(
+                    format!("grVertexLayout: unknown parameter {param:#x}"),
+                    false,
+                );
                 return;
             }
         }
@@ -675,21 +834,39 @@ impl Glide {
 
     /// `grDrawVertexArray`: `mode` is `GR_POINTS` .. `GR_TRIANGLE_FAN_CONTINUE`.
     pub fn draw_vertex_array(&mut self, mode: u32, vertices: &[&[f32]]) {
-        if self.check(mode > GR_TRIANGLE_FAN_CONTINUE, "grDrawVertexArray", "invalid primitive mode") {
+        if self.check(
+            mode > GR_TRIANGLE_FAN_CONTINUE,
+            "grDrawVertexArray",
+            "invalid primitive mode",
+        ) {
             return;
         }
         self.draw_list(mode, vertices);
     }
 
     /// `grDrawVertexArrayContiguous`: `count` vertices `stride` bytes apart in `data`.
-    pub fn draw_vertex_array_contiguous(&mut self, mode: u32, data: &[f32], count: usize, stride: usize) {
-        if self.check(stride == 0 || stride % 4 != 0, "grDrawVertexArrayContiguous", "stride must be a positive multiple of 4")
-            || self.check(mode > GR_TRIANGLE_FAN_CONTINUE, "grDrawVertexArrayContiguous", "invalid primitive mode")
-        {
+    pub fn draw_vertex_array_contiguous(
+        &mut self,
+        mode: u32,
+        data: &[f32],
+        count: usize,
+        stride: usize,
+    ) {
+        if self.check(
+            stride == 0 || stride % 4 != 0,
+            "grDrawVertexArrayContiguous",
+            "stride must be a positive multiple of 4",
+        ) || self.check(
+            mode > GR_TRIANGLE_FAN_CONTINUE,
+            "grDrawVertexArrayContiguous",
+            "invalid primitive mode",
+        ) {
             return;
         }
         let words = stride / 4;
-        let verts: Vec<&[f32]> = (0..count).map(|i| data.get(i * words..).unwrap_or(&[])).collect();
+        let verts: Vec<&[f32]> = (0..count)
+            .map(|i| data.get(i * words..).unwrap_or(&[]))
+            .collect();
         self.draw_list(mode, &verts);
     }
 
@@ -709,7 +886,8 @@ impl Glide {
         let old_za = self.st.fbi.za_color;
         let mut za = old_za;
         if fbz & RGBWRMASK != 0 {
-            self.hw.w(COLOR1, state::swizzle(color, self.st.color_format));
+            self.hw
+                .w(COLOR1, state::swizzle(color, self.st.color_format));
         }
         if fbz & (hw::bits::ENALPHABUFFER | ZAWRMASK) == hw::bits::ENALPHABUFFER | ZAWRMASK {
             za = (za & !0xff00_0000) | (u32::from(alpha) << 24);
@@ -738,8 +916,8 @@ impl Glide {
                 2 => 3,
                 n => n << 1,
             };
-        } else if iv > 0 {
-            iv -= 1;
+        } else {
+            iv = iv.saturating_sub(1);
         }
         self.hw.w(SWAPBUFFER_CMD, (iv << 1) | vsync);
         self.swaps += 1;
@@ -757,12 +935,22 @@ impl Glide {
 
     /// `guGammaCorrectionRGB`.
     pub fn gamma_correction_rgb(&mut self, r: f32, g: f32, b: f32) {
-        Init { hw: &mut self.hw, st: &mut self.init, board: &self.board }.gamma(f64::from(r), f64::from(g), f64::from(b));
+        Init {
+            hw: &mut self.hw,
+            st: &mut self.init,
+            board: &self.board,
+        }
+        .gamma(f64::from(r), f64::from(g), f64::from(b));
     }
 
     /// `grLoadGammaTable`.
     pub fn load_gamma_table(&mut self, red: &[u32], green: &[u32], blue: &[u32]) {
-        Init { hw: &mut self.hw, st: &mut self.init, board: &self.board }.gamma_table(red, green, blue);
+        Init {
+            hw: &mut self.hw,
+            st: &mut self.init,
+            board: &self.board,
+        }
+        .gamma_table(red, green, blue);
     }
 
     // ----- textures -----------------------------------------------------------------
@@ -779,7 +967,13 @@ impl Glide {
 
     /// `grTexTextureMemRequired`.
     pub fn tex_texture_mem_required(&self, even_odd: u32, info: &TexInfo) -> u32 {
-        tex::mem_required(info.small_lod, info.large_lod, info.aspect, info.format, even_odd)
+        tex::mem_required(
+            info.small_lod,
+            info.large_lod,
+            info.aspect,
+            info.format,
+            even_odd,
+        )
     }
 
     /// `grTexCalcMemRequired`.
@@ -794,7 +988,11 @@ impl Glide {
             || !(-3..=3).contains(&info.aspect)
             || info.format > GR_TEXFMT_RSVD2
             || !(1..=3).contains(&even_odd);
-        !self.check(bad, call, "invalid texture description (LODs, aspect, format or even/odd mask)")
+        !self.check(
+            bad,
+            call,
+            "invalid texture description (LODs, aspect, format or even/odd mask)",
+        )
     }
 
     /// `grTexSource`.
@@ -802,31 +1000,83 @@ impl Glide {
         if self.check_tmu("grTexSource", tmu) || !self.tex_info_ok("grTexSource", info, even_odd) {
             return;
         }
-        let need = tex::mem_required(info.small_lod, info.large_lod, info.aspect, info.format, even_odd);
-        if self.check(start.saturating_add(need) > self.board.tmu_mb << 20, "grTexSource", "insufficient texture ram at startAddress") {
+        let need = tex::mem_required(
+            info.small_lod,
+            info.large_lod,
+            info.aspect,
+            info.format,
+            even_odd,
+        );
+        if self.check(
+            start.saturating_add(need) > self.board.tmu_mb << 20,
+            "grTexSource",
+            "insufficient texture ram at startAddress",
+        ) {
             return;
         }
         self.tex_source_hw(tmu_index(tmu), start, even_odd, info);
     }
 
     /// `grTexDownloadMipMap`: `data` holds every level, largest first.
-    pub fn tex_download_mipmap(&mut self, tmu: u32, start: u32, even_odd: u32, info: &TexInfo, data: &[u8]) {
-        if self.check_tmu("grTexDownloadMipMap", tmu) || !self.tex_info_ok("grTexDownloadMipMap", info, even_odd) {
+    pub fn tex_download_mipmap(
+        &mut self,
+        tmu: u32,
+        start: u32,
+        even_odd: u32,
+        info: &TexInfo,
+        data: &[u8],
+    ) {
+        if self.check_tmu("grTexDownloadMipMap", tmu)
+            || !self.tex_info_ok("grTexDownloadMipMap", info, even_odd)
+        {
             return;
         }
-        let size = tex::mem_required(info.small_lod, info.large_lod, info.aspect, info.format, even_odd);
-        if self.check(start.saturating_add(size) > self.board.tmu_mb << 20, "grTexDownloadMipMap", "insufficient texture ram at startAddress")
-            || self.check(start < 0x20_0000 && start + size > 0x20_0000, "grTexDownloadMipMap", "mipmap cannot span 2 Mbyte boundary")
-        {
+        let size = tex::mem_required(
+            info.small_lod,
+            info.large_lod,
+            info.aspect,
+            info.format,
+            even_odd,
+        );
+        if self.check(
+            start.saturating_add(size) > self.board.tmu_mb << 20,
+            "grTexDownloadMipMap",
+            "insufficient texture ram at startAddress",
+        ) || self.check(
+            start < 0x20_0000 && start + size > 0x20_0000,
+            "grTexDownloadMipMap",
+            "mipmap cannot span 2 Mbyte boundary",
+        ) {
             return;
         }
         self.tex_download_mipmap_hw(tmu_index(tmu), start, even_odd, info, data);
     }
 
     /// `grTexDownloadMipMapLevel`.
-    pub fn tex_download_mipmap_level(&mut self, tmu: u32, start: u32, this_lod: u32, large_lod: u32, aspect: i32, format: u32, even_odd: u32, data: &[u8]) {
+    pub fn tex_download_mipmap_level(
+        &mut self,
+        tmu: u32,
+        start: u32,
+        this_lod: u32,
+        large_lod: u32,
+        aspect: i32,
+        format: u32,
+        even_odd: u32,
+        data: &[u8],
+    ) {
         let (_, h) = tex::level_wh(this_lod, aspect);
-        self.tex_download_mipmap_level_partial(tmu, start, this_lod, large_lod, aspect, format, even_odd, data, 0, h as i32 - 1);
+        self.tex_download_mipmap_level_partial(
+            tmu,
+            start,
+            this_lod,
+            large_lod,
+            aspect,
+            format,
+            even_odd,
+            data,
+            0,
+            h as i32 - 1,
+        );
     }
 
     /// `grTexDownloadMipMapLevelPartial`: rows `t..=max_t`.
@@ -843,28 +1093,66 @@ impl Glide {
         t: i32,
         max_t: i32,
     ) -> bool {
-        let info = TexInfo { small_lod: this_lod, large_lod, aspect, format };
+        let info = TexInfo {
+            small_lod: this_lod,
+            large_lod,
+            aspect,
+            format,
+        };
         if self.check_tmu("grTexDownloadMipMapLevelPartial", tmu)
             || !self.tex_info_ok("grTexDownloadMipMapLevelPartial", &info, even_odd)
-            || self.check(t < 0 || max_t < t, "grTexDownloadMipMapLevelPartial", "invalid row range")
+            || self.check(
+                t < 0 || max_t < t,
+                "grTexDownloadMipMapLevelPartial",
+                "invalid row range",
+            )
         {
             return false;
         }
-        self.tex_download_level_partial(tmu_index(tmu), start, this_lod, large_lod, aspect, format, even_odd, data, t as u32, max_t as u32);
+        self.tex_download_level_partial(
+            tmu_index(tmu),
+            start,
+            this_lod,
+            large_lod,
+            aspect,
+            format,
+            even_odd,
+            data,
+            t as u32,
+            max_t as u32,
+        );
         true
     }
 
     /// `grTexDownloadTable` / `grTexDownloadTableExt` for NCC tables: 12 packed words.
     pub fn tex_download_ncc_table(&mut self, tmu: u32, which: u32, packed: &[u32; 12]) {
-        if self.check_tmu("grTexDownloadTable", tmu) || self.check(which > GR_TEXTABLE_NCC1, "grTexDownloadTable", "invalid NCC table") {
+        if self.check_tmu("grTexDownloadTable", tmu)
+            || self.check(
+                which > GR_TEXTABLE_NCC1,
+                "grTexDownloadTable",
+                "invalid NCC table",
+            )
+        {
             return;
         }
         self.tex_download_ncc(tmu_index(tmu), which, packed);
     }
 
     /// `grTexDownloadTable(GR_TEXTABLE_PALETTE)` / `grTexDownloadTablePartial`.
-    pub fn tex_download_palette_range(&mut self, tmu: u32, palette: &[u32; 256], start: usize, end: usize) {
-        if self.check_tmu("grTexDownloadTable", tmu) || self.check(start > end || end > 255, "grTexDownloadTablePartial", "invalid palette range") {
+    pub fn tex_download_palette_range(
+        &mut self,
+        tmu: u32,
+        palette: &[u32; 256],
+        start: usize,
+        end: usize,
+    ) {
+        if self.check_tmu("grTexDownloadTable", tmu)
+            || self.check(
+                start > end || end > 255,
+                "grTexDownloadTablePartial",
+                "invalid palette range",
+            )
+        {
             return;
         }
         self.tex_download_palette(tmu_index(tmu), palette, start, end);
@@ -872,7 +1160,11 @@ impl Glide {
 
     /// `grTexNCCTable`.
     pub fn tex_ncc_table_select(&mut self, table: u32) {
-        if self.check(table > GR_NCCTABLE_NCC1, "grTexNCCTable", "invalid NCC table") {
+        if self.check(
+            table > GR_NCCTABLE_NCC1,
+            "grTexNCCTable",
+            "invalid NCC table",
+        ) {
             return;
         }
         self.tex_ncc_table(table);
@@ -880,7 +1172,13 @@ impl Glide {
 
     /// `grTexClampMode`.
     pub fn tex_clamp_mode(&mut self, tmu: u32, s: u32, t: u32) {
-        if self.check_tmu("grTexClampMode", tmu) || self.check(s > GR_TEXTURECLAMP_MIRROR_EXT || t > GR_TEXTURECLAMP_MIRROR_EXT, "grTexClampMode", "invalid clamp mode") {
+        if self.check_tmu("grTexClampMode", tmu)
+            || self.check(
+                s > GR_TEXTURECLAMP_MIRROR_EXT || t > GR_TEXTURECLAMP_MIRROR_EXT,
+                "grTexClampMode",
+                "invalid clamp mode",
+            )
+        {
             return;
         }
         self.tex_clamp(tmu_index(tmu), s, t);
@@ -888,7 +1186,9 @@ impl Glide {
 
     /// `grTexFilterMode`.
     pub fn tex_filter_mode(&mut self, tmu: u32, min: u32, mag: u32) {
-        if self.check_tmu("grTexFilterMode", tmu) || self.check(min > 1 || mag > 1, "grTexFilterMode", "invalid filter mode") {
+        if self.check_tmu("grTexFilterMode", tmu)
+            || self.check(min > 1 || mag > 1, "grTexFilterMode", "invalid filter mode")
+        {
             return;
         }
         self.tex_filter(tmu_index(tmu), min, mag);
@@ -896,7 +1196,13 @@ impl Glide {
 
     /// `grTexLodBiasValue`.
     pub fn tex_lod_bias_value(&mut self, tmu: u32, bias: f32) {
-        if self.check_tmu("grTexLodBiasValue", tmu) || self.check(!bias.is_finite(), "grTexLodBiasValue", "bias must be finite") {
+        if self.check_tmu("grTexLodBiasValue", tmu)
+            || self.check(
+                !bias.is_finite(),
+                "grTexLodBiasValue",
+                "bias must be finite",
+            )
+        {
             return;
         }
         self.tex_lod_bias(tmu_index(tmu), bias);
@@ -904,7 +1210,13 @@ impl Glide {
 
     /// `grTexDetailControl`.
     pub fn tex_detail_control(&mut self, tmu: u32, lod_bias: i32, scale: u8, max: f32) {
-        if self.check_tmu("grTexDetailControl", tmu) || self.check(!(-32..=31).contains(&lod_bias) || scale > 7 || !(0.0..=1.0).contains(&max), "grTexDetailControl", "invalid detail parameters") {
+        if self.check_tmu("grTexDetailControl", tmu)
+            || self.check(
+                !(-32..=31).contains(&lod_bias) || scale > 7 || !(0.0..=1.0).contains(&max),
+                "grTexDetailControl",
+                "invalid detail parameters",
+            )
+        {
             return;
         }
         self.tex_detail(tmu_index(tmu), lod_bias, scale, max);
@@ -912,22 +1224,53 @@ impl Glide {
 
     /// `grTexMipMapMode`.
     pub fn tex_mipmap_mode(&mut self, tmu: u32, mode: u32, lod_blend: bool) {
-        if self.check_tmu("grTexMipMapMode", tmu) || self.check(mode > GR_MIPMAP_NEAREST_DITHER, "grTexMipMapMode", "invalid mode passed") {
+        if self.check_tmu("grTexMipMapMode", tmu)
+            || self.check(
+                mode > GR_MIPMAP_NEAREST_DITHER,
+                "grTexMipMapMode",
+                "invalid mode passed",
+            )
+        {
             return;
         }
         self.tex_mipmap(tmu_index(tmu), mode, lod_blend);
     }
 
     /// `grTexCombine`.
-    pub fn tex_combine(&mut self, tmu: u32, rgb_fn: u32, rgb_factor: u32, a_fn: u32, a_factor: u32, rgb_invert: bool, a_invert: bool) {
-        let bad_fn = |f: u32| f > GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA || (f > 9 && f < 0x10);
-        let bad_factor = |f: u32| (f & 7) > GR_COMBINE_FACTOR_LOD_FRACTION || f > GR_COMBINE_FACTOR_ONE_MINUS_LOD_FRACTION;
+    pub fn tex_combine(
+        &mut self,
+        tmu: u32,
+        rgb_fn: u32,
+        rgb_factor: u32,
+        a_fn: u32,
+        a_factor: u32,
+        rgb_invert: bool,
+        a_invert: bool,
+    ) {
+        let bad_fn = |f: u32| {
+            f > GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA || (f > 9 && f < 0x10)
+        };
+        let bad_factor = |f: u32| {
+            (f & 7) > GR_COMBINE_FACTOR_LOD_FRACTION || f > GR_COMBINE_FACTOR_ONE_MINUS_LOD_FRACTION
+        };
         if self.check_tmu("grTexCombine", tmu)
-            || self.check(bad_fn(rgb_fn) || bad_fn(a_fn) || bad_factor(rgb_factor) || bad_factor(a_factor), "grTexCombine", "unsupported texture combine function or factor")
+            || self.check(
+                bad_fn(rgb_fn) || bad_fn(a_fn) || bad_factor(rgb_factor) || bad_factor(a_factor),
+                "grTexCombine",
+                "unsupported texture combine function or factor",
+            )
         {
             return;
         }
-        self.tex_combine_hw(tmu_index(tmu), rgb_fn, rgb_factor, a_fn, a_factor, rgb_invert, a_invert);
+        self.tex_combine_hw(
+            tmu_index(tmu),
+            rgb_fn,
+            rgb_factor,
+            a_fn,
+            a_factor,
+            rgb_invert,
+            a_invert,
+        );
     }
 
     /// `grTexMultibase`.
@@ -939,8 +1282,21 @@ impl Glide {
     }
 
     /// `grTexMultibaseAddress`.
-    pub fn tex_multibase_address(&mut self, tmu: u32, range: u32, start: u32, even_odd: u32, info: &TexInfo) {
-        if self.check_tmu("grTexMultibaseAddress", tmu) || self.check(range > GR_TEXBASE_256, "grTexMultibaseAddress", "invalid range") {
+    pub fn tex_multibase_address(
+        &mut self,
+        tmu: u32,
+        range: u32,
+        start: u32,
+        even_odd: u32,
+        info: &TexInfo,
+    ) {
+        if self.check_tmu("grTexMultibaseAddress", tmu)
+            || self.check(
+                range > GR_TEXBASE_256,
+                "grTexMultibaseAddress",
+                "invalid range",
+            )
+        {
             return;
         }
         self.tex_multibase_address_hw(tmu_index(tmu), range, start, even_odd, info);
@@ -949,10 +1305,22 @@ impl Glide {
     // ----- LFB ----------------------------------------------------------------------
 
     /// `grLfbLock`.
-    pub fn lfb_lock(&mut self, ty: u32, buffer: u32, write_mode: u32, origin: u32, pixel_pipeline: bool) -> Option<LfbInfo> {
+    pub fn lfb_lock(
+        &mut self,
+        ty: u32,
+        buffer: u32,
+        write_mode: u32,
+        origin: u32,
+        pixel_pipeline: bool,
+    ) -> Option<LfbInfo> {
         let r = self.lfb_lock_hw(ty, buffer, write_mode, origin, pixel_pipeline);
         if r.is_none() {
-            self.report(format!("grLfbLock: lock refused (type {ty:#x}, buffer {buffer}, mode {write_mode:#x})"), false);
+            self.report(
+                format!(
+                    "grLfbLock: lock refused (type {ty:#x}, buffer {buffer}, mode {write_mode:#x})"
+                ),
+                false,
+            );
         }
         r
     }
@@ -963,12 +1331,32 @@ impl Glide {
     }
 
     /// `grLfbWriteRegion`.
-    pub fn lfb_write_region(&mut self, buffer: u32, x: u32, y: u32, format: u32, width: u32, height: u32, pipeline: bool, stride: usize, data: &[u8]) -> bool {
+    pub fn lfb_write_region(
+        &mut self,
+        buffer: u32,
+        x: u32,
+        y: u32,
+        format: u32,
+        width: u32,
+        height: u32,
+        pipeline: bool,
+        stride: usize,
+        data: &[u8],
+    ) -> bool {
         self.lfb_write_region_hw(buffer, x, y, format, width, height, pipeline, stride, data)
     }
 
     /// `grLfbReadRegion`: 16-bit pixels.
-    pub fn lfb_read_region(&mut self, buffer: u32, x: u32, y: u32, width: u32, height: u32, stride: usize, out: &mut [u8]) -> bool {
+    pub fn lfb_read_region(
+        &mut self,
+        buffer: u32,
+        x: u32,
+        y: u32,
+        width: u32,
+        height: u32,
+        stride: usize,
+        out: &mut [u8],
+    ) -> bool {
         self.lfb_read_region_hw(buffer, x, y, width, height, stride, out)
     }
 }

@@ -178,9 +178,16 @@ pub(crate) struct Viewport {
 /// chip's ARGB.
 pub(crate) fn swizzle(color: u32, format: u32) -> u32 {
     match format {
-        GR_COLORFORMAT_ABGR => (color & 0xff00_ff00) | ((color & 0xff) << 16) | ((color >> 16) & 0xff),
+        GR_COLORFORMAT_ABGR => {
+            (color & 0xff00_ff00) | ((color & 0xff) << 16) | ((color >> 16) & 0xff)
+        }
         GR_COLORFORMAT_RGBA | GR_COLORFORMAT_BGRA => {
-            let (a, x, y, z) = (color & 0xff, (color >> 8) & 0xff, (color >> 16) & 0xff, color >> 24);
+            let (a, x, y, z) = (
+                color & 0xff,
+                (color >> 8) & 0xff,
+                (color >> 16) & 0xff,
+                color >> 24,
+            );
             if format == GR_COLORFORMAT_RGBA {
                 // RGBA: R in 31:24, G 23:16, B 15:8.
                 (a << 24) | (z << 16) | (y << 8) | x
@@ -228,7 +235,11 @@ impl GlideState {
             a_df = GR_BLEND_ZERO;
         }
         let mut m = self.fbi.alpha_mode;
-        if rgb_sf == GR_BLEND_ONE && rgb_df == GR_BLEND_ZERO && a_sf == GR_BLEND_ONE && a_df == GR_BLEND_ZERO {
+        if rgb_sf == GR_BLEND_ONE
+            && rgb_df == GR_BLEND_ZERO
+            && a_sf == GR_BLEND_ONE
+            && a_df == GR_BLEND_ZERO
+        {
             m &= !ENALPHABLEND;
         } else {
             m |= ENALPHABLEND;
@@ -257,8 +268,10 @@ impl GlideState {
             p |= CCA_REVERSE_BLEND;
         }
         let factor = c.factor & 0x7;
-        self.ac_requires_texture = factor == GR_COMBINE_FACTOR_TEXTURE_ALPHA || c.other == GR_COMBINE_OTHER_TEXTURE;
-        self.ac_requires_it_alpha = c.local == GR_COMBINE_LOCAL_ITERATED || c.other == GR_COMBINE_OTHER_ITERATED;
+        self.ac_requires_texture =
+            factor == GR_COMBINE_FACTOR_TEXTURE_ALPHA || c.other == GR_COMBINE_OTHER_TEXTURE;
+        self.ac_requires_it_alpha =
+            c.local == GR_COMBINE_LOCAL_ITERATED || c.other == GR_COMBINE_OTHER_ITERATED;
         p |= factor << CCA_MSELECT_SHIFT;
         p |= (c.local & 3) << CC_ALOCALSELECT_SHIFT;
         p |= (c.other & 3) << 2;
@@ -267,15 +280,20 @@ impl GlideState {
         }
         p |= match c.function {
             GR_COMBINE_FUNCTION_ZERO => CCA_ZERO_OTHER,
-            GR_COMBINE_FUNCTION_LOCAL | GR_COMBINE_FUNCTION_LOCAL_ALPHA => CCA_ZERO_OTHER | CCA_ADD_ALOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL | GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA => {
-                CCA_ADD_ALOCAL
+            GR_COMBINE_FUNCTION_LOCAL | GR_COMBINE_FUNCTION_LOCAL_ALPHA => {
+                CCA_ZERO_OTHER | CCA_ADD_ALOCAL
             }
+            GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL
+            | GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA => CCA_ADD_ALOCAL,
             GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL => CCA_SUB_CLOCAL,
             GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL
-            | GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => CCA_SUB_CLOCAL | CCA_ADD_ALOCAL,
+            | GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
+                CCA_SUB_CLOCAL | CCA_ADD_ALOCAL
+            }
             GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL
-            | GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => CCA_ZERO_OTHER | CCA_SUB_CLOCAL | CCA_ADD_ALOCAL,
+            | GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
+                CCA_ZERO_OTHER | CCA_SUB_CLOCAL | CCA_ADD_ALOCAL
+            }
             _ => 0,
         };
         if self.cc_requires_texture || self.ac_requires_texture {
@@ -295,8 +313,10 @@ impl GlideState {
             p |= CC_REVERSE_BLEND;
         }
         let factor = c.factor & 0x7;
-        self.cc_requires_texture = factor == GR_COMBINE_FACTOR_TEXTURE_ALPHA || c.other == GR_COMBINE_OTHER_TEXTURE;
-        self.cc_requires_it_rgb = c.local == GR_COMBINE_LOCAL_ITERATED || c.other == GR_COMBINE_OTHER_ITERATED;
+        self.cc_requires_texture =
+            factor == GR_COMBINE_FACTOR_TEXTURE_ALPHA || c.other == GR_COMBINE_OTHER_TEXTURE;
+        self.cc_requires_it_rgb =
+            c.local == GR_COMBINE_LOCAL_ITERATED || c.other == GR_COMBINE_OTHER_ITERATED;
         p |= factor << CC_MSELECT_SHIFT;
         p |= (c.local & 1) << CC_LOCALSELECT_SHIFT;
         p |= c.other & 3;
@@ -311,9 +331,15 @@ impl GlideState {
             GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA => CC_ADD_ALOCAL,
             GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL => CC_SUB_CLOCAL,
             GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL => CC_SUB_CLOCAL | CC_ADD_CLOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => CC_SUB_CLOCAL | CC_ADD_ALOCAL,
-            GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL => CC_ZERO_OTHER | CC_SUB_CLOCAL | CC_ADD_CLOCAL,
-            GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => CC_ZERO_OTHER | CC_SUB_CLOCAL | CC_ADD_ALOCAL,
+            GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
+                CC_SUB_CLOCAL | CC_ADD_ALOCAL
+            }
+            GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL => {
+                CC_ZERO_OTHER | CC_SUB_CLOCAL | CC_ADD_CLOCAL
+            }
+            GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
+                CC_ZERO_OTHER | CC_SUB_CLOCAL | CC_ADD_ALOCAL
+            }
             _ => 0,
         };
         if self.cc_requires_texture || self.ac_requires_texture {
@@ -434,7 +460,8 @@ impl crate::Glide {
         }
         if inv & dirty::FOG_MODE != 0 {
             let mode = self.st.args.fog_mode;
-            let mut f = self.st.fbi.fog_mode & !(ENFOGGING | FOGADD | FOGMULT | FOG_ALPHA | FOG_Z | FOG_CONSTANT);
+            let mut f = self.st.fbi.fog_mode
+                & !(ENFOGGING | FOGADD | FOGMULT | FOG_ALPHA | FOG_Z | FOG_CONSTANT);
             f |= match mode & 0xff {
                 GR_FOG_WITH_ITERATED_ALPHA_EXT => ENFOGGING | FOG_ALPHA,
                 GR_FOG_WITH_ITERATED_Z => ENFOGGING | FOG_Z,

@@ -124,17 +124,23 @@ fn base_address(start: u32, large_hw_lod: u32, aspect: i32, format: u32, even_od
         mip_offset(class, large_hw_lod, false)
     } else {
         let mut l = large_hw_lod;
-        if (even_odd == GR_MIPMAPLEVELMASK_EVEN && l & 1 == 1) || (even_odd == GR_MIPMAPLEVELMASK_ODD && l & 1 == 0) {
+        if (even_odd == GR_MIPMAPLEVELMASK_EVEN && l & 1 == 1)
+            || (even_odd == GR_MIPMAPLEVELMASK_ODD && l & 1 == 0)
+        {
             l += 1;
         }
         mip_offset(class, l, true)
     };
-    let sum = if format >= GR_TEXFMT_16BIT { sum << 1 } else { sum };
+    let sum = if format >= GR_TEXFMT_16BIT {
+        sum << 1
+    } else {
+        sum
+    };
     start.wrapping_sub(sum)
 }
 
 /// Host-side width and height of one LOD level.
-pub(crate) fn level_wh(lod: u32, aspect: i32) -> (u32, u32) {
+pub fn level_wh(lod: u32, aspect: i32) -> (u32, u32) {
     let side = 1u32 << lod.min(8);
     if aspect >= 0 {
         (side, (side >> aspect.min(3)).max(1))
@@ -190,7 +196,9 @@ impl crate::Glide {
     /// `grTexDetailControl`.
     pub(crate) fn tex_detail(&mut self, tmu: usize, lod_bias: i32, scale: u8, max: f32) {
         let dmax = (max * 255.0) as u32;
-        let d = (((lod_bias as u32) << 8) & (0x3f << 8)) | (dmax & 0xff) | ((u32::from(scale) << 14) & (7 << 14));
+        let d = (((lod_bias as u32) << 8) & (0x3f << 8))
+            | (dmax & 0xff)
+            | ((u32::from(scale) << 14) & (7 << 14));
         self.tmu_write(tmu, &[(T_DETAIL, d)]);
         self.st.tmu[tmu].t_detail = d;
     }
@@ -213,7 +221,10 @@ impl crate::Glide {
             m |= TRILINEAR;
             // Odd pass of two-pass trilinear: zero other, blend by LOD fraction,
             // no reverse blend.
-            if m & TC_ZERO_OTHER != 0 && (m & TC_MSELECT) == (5 << TC_MSELECT_SHIFT) && m & TC_REVERSE_BLEND == 0 {
+            if m & TC_ZERO_OTHER != 0
+                && (m & TC_MSELECT) == (5 << TC_MSELECT_SHIFT)
+                && m & TC_REVERSE_BLEND == 0
+            {
                 l |= LOD_ODD;
             }
         }
@@ -245,14 +256,20 @@ impl crate::Glide {
         if rgb_factor & 8 == 0 {
             m |= TC_REVERSE_BLEND;
         }
-        if matches!(rgb_factor & 7, GR_COMBINE_FACTOR_LOCAL | GR_COMBINE_FACTOR_LOCAL_ALPHA) {
+        if matches!(
+            rgb_factor & 7,
+            GR_COMBINE_FACTOR_LOCAL | GR_COMBINE_FACTOR_LOCAL_ALPHA
+        ) {
             uses_local = true;
         }
         m |= (a_factor & 7) << TCA_MSELECT_SHIFT;
         if a_factor & 8 == 0 {
             m |= TCA_REVERSE_BLEND;
         }
-        if matches!(a_factor & 7, GR_COMBINE_FACTOR_LOCAL | GR_COMBINE_FACTOR_LOCAL_ALPHA) {
+        if matches!(
+            a_factor & 7,
+            GR_COMBINE_FACTOR_LOCAL | GR_COMBINE_FACTOR_LOCAL_ALPHA
+        ) {
             uses_local = true;
         }
         if rgb_invert {
@@ -261,16 +278,31 @@ impl crate::Glide {
         if a_invert {
             m |= TCA_INVERT_OUTPUT;
         }
-        let (bits, local) = combine_bits(rgb_fn, [TC_ZERO_OTHER, TC_SUB_CLOCAL, TC_ADD_CLOCAL, TC_ADD_ALOCAL]);
+        let (bits, local) = combine_bits(
+            rgb_fn,
+            [TC_ZERO_OTHER, TC_SUB_CLOCAL, TC_ADD_CLOCAL, TC_ADD_ALOCAL],
+        );
         m |= bits;
         uses_local |= local;
-        let (bits, local) = combine_bits(a_fn, [TCA_ZERO_OTHER, TCA_SUB_CLOCAL, TCA_ADD_CLOCAL, TCA_ADD_ALOCAL]);
+        let (bits, local) = combine_bits(
+            a_fn,
+            [
+                TCA_ZERO_OTHER,
+                TCA_SUB_CLOCAL,
+                TCA_ADD_CLOCAL,
+                TCA_ADD_ALOCAL,
+            ],
+        );
         m |= bits;
         uses_local |= local;
         if uses_local {
             self.st.tmu_mask |= bit;
         }
-        if m & TRILINEAR != 0 && m & TC_ZERO_OTHER != 0 && (m & TC_MSELECT) == (5 << TC_MSELECT_SHIFT) && m & TC_REVERSE_BLEND == 0 {
+        if m & TRILINEAR != 0
+            && m & TC_ZERO_OTHER != 0
+            && (m & TC_MSELECT) == (5 << TC_MSELECT_SHIFT)
+            && m & TC_REVERSE_BLEND == 0
+        {
             l |= LOD_ODD;
         }
         l |= even_odd_bits(c.even_odd);
@@ -289,9 +321,20 @@ impl crate::Glide {
         c.large_lod = large;
         c.even_odd = even_odd;
         let base = base_address(start, large, info.aspect, info.format, even_odd) >> 3;
-        let m = (c.texture_mode & !TFORMAT) | ((info.format & 0xf) << TFORMAT_SHIFT) | TPERSP_ST | TCLAMPW;
-        let mut l = c.t_lod & !(LODMIN | LODMAX | LOD_ASPECT | LOD_TSPLIT | LOD_ODD | LOD_S_IS_WIDER);
-        l |= lod_minmax(large, if c.mm_mode == GR_MIPMAP_DISABLE { large } else { small });
+        let m = (c.texture_mode & !TFORMAT)
+            | ((info.format & 0xf) << TFORMAT_SHIFT)
+            | TPERSP_ST
+            | TCLAMPW;
+        let mut l =
+            c.t_lod & !(LODMIN | LODMAX | LOD_ASPECT | LOD_TSPLIT | LOD_ODD | LOD_S_IS_WIDER);
+        l |= lod_minmax(
+            large,
+            if c.mm_mode == GR_MIPMAP_DISABLE {
+                large
+            } else {
+                small
+            },
+        );
         l |= even_odd_bits(even_odd);
         l |= ASPECT_XLATE[aspect_index(info.aspect)];
         c.st_scale = match info.aspect {
@@ -322,7 +365,14 @@ impl crate::Glide {
     }
 
     /// `grTexMultibaseAddress`: `range` is `GR_TEXBASE_*`.
-    pub(crate) fn tex_multibase_address_hw(&mut self, tmu: usize, range: u32, start: u32, even_odd: u32, info: &TexInfo) {
+    pub(crate) fn tex_multibase_address_hw(
+        &mut self,
+        tmu: usize,
+        range: u32,
+        start: u32,
+        even_odd: u32,
+        info: &TexInfo,
+    ) {
         let (slot, lod, reg) = match range {
             GR_TEXBASE_256 => (0, GR_LOD_LOG2_256, TEX_BASE_ADDR),
             GR_TEXBASE_128 => (1, GR_LOD_LOG2_128, TEX_BASE_ADDR_1),
@@ -363,7 +413,11 @@ impl crate::Glide {
     ) {
         let this_hw = hw_lod(this_lod);
         let large_hw = hw_lod(large_lod);
-        let level_mask = if this_hw & 1 == 1 { GR_MIPMAPLEVELMASK_ODD } else { GR_MIPMAPLEVELMASK_EVEN };
+        let level_mask = if this_hw & 1 == 1 {
+            GR_MIPMAPLEVELMASK_ODD
+        } else {
+            GR_MIPMAPLEVELMASK_EVEN
+        };
         if even_odd & level_mask == 0 {
             return;
         }
@@ -393,7 +447,9 @@ impl crate::Glide {
         for row in t..=max_t.min(255) {
             let row_addr = lod_base + (row << 9);
             match (wide, width) {
-                (false, 1) => self.hw.w(row_addr, u32::from(data.get(src).copied().unwrap_or(0))),
+                (false, 1) => self
+                    .hw
+                    .w(row_addr, u32::from(data.get(src).copied().unwrap_or(0))),
                 (false, 2) | (true, 1) => self.hw.w(row_addr, word(src) & 0xffff),
                 (false, 4) | (true, 2) => self.hw.w(row_addr, word(src)),
                 _ => {
@@ -413,12 +469,26 @@ impl crate::Glide {
             src += bytes_per_row;
         }
         let c = self.st.tmu[tmu];
-        self.tmu_write(tmu, &[(TEX_BASE_ADDR, c.tex_base_addr[0]), (TEXTURE_MODE, c.texture_mode), (T_LOD, c.t_lod)]);
+        self.tmu_write(
+            tmu,
+            &[
+                (TEX_BASE_ADDR, c.tex_base_addr[0]),
+                (TEXTURE_MODE, c.texture_mode),
+                (T_LOD, c.t_lod),
+            ],
+        );
     }
 
     /// `grTexDownloadMipMap`: every level from large to small; `data` holds all
     /// levels back to back.
-    pub(crate) fn tex_download_mipmap_hw(&mut self, tmu: usize, start: u32, even_odd: u32, info: &TexInfo, data: &[u8]) {
+    pub(crate) fn tex_download_mipmap_hw(
+        &mut self,
+        tmu: usize,
+        start: u32,
+        even_odd: u32,
+        info: &TexInfo,
+        data: &[u8],
+    ) {
         let texel = if info.format >= GR_TEXFMT_16BIT { 2 } else { 1 };
         let mut off = 0usize;
         let mut lod = info.large_lod.min(8);
@@ -429,7 +499,18 @@ impl crate::Glide {
             let (w, h) = level_wh(lod, info.aspect);
             let size = (w * h) as usize * texel;
             let level = data.get(off..).unwrap_or(&[]);
-            self.tex_download_level_partial(tmu, start, lod, info.large_lod, info.aspect, info.format, even_odd, level, 0, h - 1);
+            self.tex_download_level_partial(
+                tmu,
+                start,
+                lod,
+                info.large_lod,
+                info.aspect,
+                info.format,
+                even_odd,
+                level,
+                0,
+                h - 1,
+            );
             off += size;
             if lod == 0 {
                 break;
@@ -447,11 +528,20 @@ impl crate::Glide {
 
     /// `_grTexDownloadPalette`: entries `start..=end` through the NCC table 0
     /// I/Q registers (bit 31 set selects palette writes).
-    pub(crate) fn tex_download_palette(&mut self, tmu: usize, pal: &[u32; 256], start: usize, end: usize) {
+    pub(crate) fn tex_download_palette(
+        &mut self,
+        tmu: usize,
+        pal: &[u32; 256],
+        start: usize,
+        end: usize,
+    ) {
         let regs: Vec<(u32, u32)> = (start..=end.min(255))
             .map(|i| {
                 let reg = NCC_TABLE0 + 4 * (4 + (i as u32 & 7));
-                (reg, 0x8000_0000 | (((i as u32) & 0xfe) << 23) | (pal[i] & 0xff_ffff))
+                (
+                    reg,
+                    0x8000_0000 | (((i as u32) & 0xfe) << 23) | (pal[i] & 0xff_ffff),
+                )
             })
             .collect();
         self.tmu_write(tmu, &regs);
@@ -484,10 +574,25 @@ mod tests {
     #[test]
     fn memory_sizes_match_glide() {
         // 256x256 16-bit, all levels: (0x10000+0x4000+...+4+4) texels * 2, rounded.
-        let full = mem_required(GR_LOD_LOG2_1, GR_LOD_LOG2_256, 0, GR_TEXFMT_RGB_565, GR_MIPMAPLEVELMASK_BOTH);
+        let full = mem_required(
+            GR_LOD_LOG2_1,
+            GR_LOD_LOG2_256,
+            0,
+            GR_TEXFMT_RGB_565,
+            GR_MIPMAPLEVELMASK_BOTH,
+        );
         assert_eq!(full, 0x15558 * 2);
         // One 8x8 8-bit level: 0x40 texels.
-        assert_eq!(mem_required(GR_LOD_LOG2_8, GR_LOD_LOG2_8, 0, GR_TEXFMT_ALPHA_8, GR_MIPMAPLEVELMASK_BOTH), 0x40);
+        assert_eq!(
+            mem_required(
+                GR_LOD_LOG2_8,
+                GR_LOD_LOG2_8,
+                0,
+                GR_TEXFMT_ALPHA_8,
+                GR_MIPMAPLEVELMASK_BOTH
+            ),
+            0x40
+        );
         assert_eq!(level_wh(GR_LOD_LOG2_256, -3), (32, 256));
         assert_eq!(level_wh(GR_LOD_LOG2_2, 3), (2, 1));
     }
@@ -495,6 +600,9 @@ mod tests {
     #[test]
     fn base_address_backs_up_to_lod0() {
         // A 128x128 16-bit texture at 0: base = 0 - 0x10000*2 (wrapping), as Glide.
-        assert_eq!(base_address(0x20000, 1, 0, GR_TEXFMT_RGB_565, GR_MIPMAPLEVELMASK_BOTH), 0);
+        assert_eq!(
+            base_address(0x20000, 1, 0, GR_TEXFMT_RGB_565, GR_MIPMAPLEVELMASK_BOTH),
+            0
+        );
     }
 }

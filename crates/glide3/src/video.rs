@@ -75,44 +75,206 @@ const fn vt(
 }
 
 // Source: sst1init.h SST_VREZ_* tables (3dfx SST-1 init library).
-const V512X256_60: VideoTiming =
-    vt([41, 626, 4, 286], [65, 24], [512, 256], 64, [0x410, 0x100, 0x100], 8, 23, true, [23.334, 23.334]);
-const V512X384_72: VideoTiming =
-    vt([51, 591, 3, 430], [55, 25], [512, 384], 96, [0x410, 0x100, 0x100], 8, 23, true, [20.093, 40.186]);
-const V512X384_75: VideoTiming =
-    vt([44, 616, 3, 415], [55, 25], [512, 384], 96, [0x410, 0x100, 0x100], 8, 23, true, [20.8, 41.6]);
-const V512X384_85: VideoTiming =
-    vt([55, 599, 3, 401], [70, 16], [512, 384], 96, [0x410, 0x100, 0x100], 8, 23, true, [22.527, 45.054]);
-const V512X384_120: VideoTiming =
-    vt([25, 650, 3, 409], [110, 25], [512, 384], 96, [0x410, 0x100, 0x100], 8, 20, true, [33.5, 67.0]);
-const V640X400_70: VideoTiming =
-    vt([96, 704, 2, 447], [48, 35], [640, 400], 150, [0, 0x430, 0x100], 10, 21, true, [25.175, 50.350]);
-const V640X400_75: VideoTiming =
-    vt([99, 733, 3, 429], [52, 25], [640, 400], 150, [0, 0x430, 0x100], 10, 19, true, [27.0, 54.0]);
-const V640X400_85: VideoTiming =
-    vt([63, 767, 3, 442], [94, 41], [640, 400], 150, [0, 0x430, 0x100], 10, 18, true, [31.5, 63.0]);
-const V640X400_120: VideoTiming =
-    vt([67, 798, 3, 424], [94, 16], [640, 400], 150, [0, 0x430, 0x100], 10, 18, true, [44.47, 88.94]);
+const V512X256_60: VideoTiming = vt(
+    [41, 626, 4, 286],
+    [65, 24],
+    [512, 256],
+    64,
+    [0x410, 0x100, 0x100],
+    8,
+    23,
+    true,
+    [23.334, 23.334],
+);
+const V512X384_72: VideoTiming = vt(
+    [51, 591, 3, 430],
+    [55, 25],
+    [512, 384],
+    96,
+    [0x410, 0x100, 0x100],
+    8,
+    23,
+    true,
+    [20.093, 40.186],
+);
+const V512X384_75: VideoTiming = vt(
+    [44, 616, 3, 415],
+    [55, 25],
+    [512, 384],
+    96,
+    [0x410, 0x100, 0x100],
+    8,
+    23,
+    true,
+    [20.8, 41.6],
+);
+const V512X384_85: VideoTiming = vt(
+    [55, 599, 3, 401],
+    [70, 16],
+    [512, 384],
+    96,
+    [0x410, 0x100, 0x100],
+    8,
+    23,
+    true,
+    [22.527, 45.054],
+);
+const V512X384_120: VideoTiming = vt(
+    [25, 650, 3, 409],
+    [110, 25],
+    [512, 384],
+    96,
+    [0x410, 0x100, 0x100],
+    8,
+    20,
+    true,
+    [33.5, 67.0],
+);
+const V640X400_70: VideoTiming = vt(
+    [96, 704, 2, 447],
+    [48, 35],
+    [640, 400],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    21,
+    true,
+    [25.175, 50.350],
+);
+const V640X400_75: VideoTiming = vt(
+    [99, 733, 3, 429],
+    [52, 25],
+    [640, 400],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    19,
+    true,
+    [27.0, 54.0],
+);
+const V640X400_85: VideoTiming = vt(
+    [63, 767, 3, 442],
+    [94, 41],
+    [640, 400],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    18,
+    true,
+    [31.5, 63.0],
+);
+const V640X400_120: VideoTiming = vt(
+    [67, 798, 3, 424],
+    [94, 16],
+    [640, 400],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    18,
+    true,
+    [44.47, 88.94],
+);
 /// 640x480 at 60 Hz (VESA); also used by the init code to set up the memory layout.
-pub(crate) const V640X480_60: VideoTiming =
-    vt([96, 704, 2, 523], [38, 25], [640, 480], 150, [0, 0x430, 0x100], 10, 23, true, [25.175, 50.350]);
-const V640X480_75: VideoTiming =
-    vt([63, 775, 3, 497], [118, 16], [640, 480], 150, [0, 0x430, 0x100], 10, 21, true, [31.5, 63.0]);
-const V640X480_85: VideoTiming =
-    vt([55, 776, 3, 506], [78, 25], [640, 480], 150, [0, 0x430, 0x100], 10, 21, true, [36.0, 72.0]);
-const V640X480_120: VideoTiming =
-    vt([45, 785, 3, 506], [100, 18], [640, 480], 150, [0, 0x430, 0x100], 10, 17, true, [50.82, 101.64]);
+pub(crate) const V640X480_60: VideoTiming = vt(
+    [96, 704, 2, 523],
+    [38, 25],
+    [640, 480],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    23,
+    true,
+    [25.175, 50.350],
+);
+const V640X480_75: VideoTiming = vt(
+    [63, 775, 3, 497],
+    [118, 16],
+    [640, 480],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    21,
+    true,
+    [31.5, 63.0],
+);
+const V640X480_85: VideoTiming = vt(
+    [55, 776, 3, 506],
+    [78, 25],
+    [640, 480],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    21,
+    true,
+    [36.0, 72.0],
+);
+const V640X480_120: VideoTiming = vt(
+    [45, 785, 3, 506],
+    [100, 18],
+    [640, 480],
+    150,
+    [0, 0x430, 0x100],
+    10,
+    17,
+    true,
+    [50.82, 101.64],
+);
 /// 800x600 at 60 Hz; also used by the init code's frame-buffer sizing.
-pub(crate) const V800X600_60: VideoTiming =
-    vt([127, 927, 4, 624], [86, 23], [800, 600], 247, [0, 0x6e2, 0x100], 13, 14, true, [40.0, 80.0]);
-const V800X600_75: VideoTiming =
-    vt([79, 975, 3, 622], [158, 21], [800, 600], 247, [0, 0x6e2, 0x100], 13, 14, true, [49.5, 99.0]);
-const V800X600_85: VideoTiming =
-    vt([63, 983, 3, 628], [150, 27], [800, 600], 247, [0, 0x6e2, 0x100], 13, 14, true, [56.25, 112.5]);
-const V856X480_60: VideoTiming =
-    vt([136, 1008, 2, 523], [100, 23], [856, 480], 210, [0, 0x430, 0x100], 14, 14, true, [36.0, 72.0]);
-const V960X720_60: VideoTiming =
-    vt([200, 1013, 4, 750], [30, 23], [960, 720], 338, [0, 0, 0x765], 15, 14, true, [56.0, 112.0]);
+pub(crate) const V800X600_60: VideoTiming = vt(
+    [127, 927, 4, 624],
+    [86, 23],
+    [800, 600],
+    247,
+    [0, 0x6e2, 0x100],
+    13,
+    14,
+    true,
+    [40.0, 80.0],
+);
+const V800X600_75: VideoTiming = vt(
+    [79, 975, 3, 622],
+    [158, 21],
+    [800, 600],
+    247,
+    [0, 0x6e2, 0x100],
+    13,
+    14,
+    true,
+    [49.5, 99.0],
+);
+const V800X600_85: VideoTiming = vt(
+    [63, 983, 3, 628],
+    [150, 27],
+    [800, 600],
+    247,
+    [0, 0x6e2, 0x100],
+    13,
+    14,
+    true,
+    [56.25, 112.5],
+);
+const V856X480_60: VideoTiming = vt(
+    [136, 1008, 2, 523],
+    [100, 23],
+    [856, 480],
+    210,
+    [0, 0x430, 0x100],
+    14,
+    14,
+    true,
+    [36.0, 72.0],
+);
+const V960X720_60: VideoTiming = vt(
+    [200, 1013, 4, 750],
+    [30, 23],
+    [960, 720],
+    338,
+    [0, 0, 0x765],
+    15,
+    14,
+    true,
+    [56.0, 112.0],
+);
 
 /// The monitor families the SST-1 init code distinguishes (its `sst1MonitorRez`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -180,7 +342,11 @@ pub(crate) fn find_mode(resolution: u32, refresh: u32) -> Option<Mode> {
         GR_RESOLUTION_960x720 => (Monitor::R960x720, V960X720_60, 60),
         _ => return None,
     };
-    Some(Mode { timing, refresh_hz: hz, monitor })
+    Some(Mode {
+        timing,
+        refresh_hz: hz,
+        monitor,
+    })
 }
 
 /// PLL parameters for one DAC clock (ICS5342 / ATT20C409 style M, N, P).
@@ -235,11 +401,32 @@ mod tests {
     #[test]
     fn pll_matches_trace_dac_writes() {
         // test00.trace.gz: 16 MHz bring-up clock writes M=0x7b, (P<<5)|N=0x6c.
-        assert_eq!(compute_clk(16.0), Some(ClkParams { m: 0x7b, n: 0xc, p: 3 }));
+        assert_eq!(
+            compute_clk(16.0),
+            Some(ClkParams {
+                m: 0x7b,
+                n: 0xc,
+                p: 3
+            })
+        );
         // 48 MHz graphics clock: M=0x41, (P<<5)|N=0x43.
-        assert_eq!(compute_clk(48.0), Some(ClkParams { m: 0x41, n: 3, p: 2 }));
+        assert_eq!(
+            compute_clk(48.0),
+            Some(ClkParams {
+                m: 0x41,
+                n: 3,
+                p: 2
+            })
+        );
         // 640x480 24-bit pixel clock 50.35 MHz: M=0x7d, (P<<5)|N=0x47.
-        assert_eq!(compute_clk(50.35), Some(ClkParams { m: 0x7d, n: 7, p: 2 }));
+        assert_eq!(
+            compute_clk(50.35),
+            Some(ClkParams {
+                m: 0x7d,
+                n: 7,
+                p: 2
+            })
+        );
     }
 
     #[test]

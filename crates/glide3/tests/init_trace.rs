@@ -12,7 +12,14 @@ fn open_640x480() -> (Glide, Rec) {
     let rec = Rec::default();
     let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
     g.sst_select(0);
-    assert!(g.win_open(GR_RESOLUTION_640x480, GR_REFRESH_60Hz, GR_COLORFORMAT_ABGR, GR_ORIGIN_UPPER_LEFT, 2, 1));
+    assert!(g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ABGR,
+        GR_ORIGIN_UPPER_LEFT,
+        2,
+        1
+    ));
     (g, rec)
 }
 

@@ -24,12 +24,25 @@ fn test04_gouraud_triangle_registers() {
     let rec = Rec::default();
     let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
     g.sst_select(0);
-    assert!(g.win_open(GR_RESOLUTION_640x480, GR_REFRESH_60Hz, GR_COLORFORMAT_ABGR, GR_ORIGIN_UPPER_LEFT, 2, 1));
+    assert!(g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ABGR,
+        GR_ORIGIN_UPPER_LEFT,
+        2,
+        1
+    ));
     let mut w = [0i32; 2];
     g.get(GR_WDEPTH_MIN_MAX, 8, &mut w);
     g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
     g.vertex_layout(GR_PARAM_RGB, 4 << 2, GR_PARAM_ENABLE);
-    g.color_combine(GR_COMBINE_FUNCTION_LOCAL, GR_COMBINE_FACTOR_NONE, GR_COMBINE_LOCAL_ITERATED, GR_COMBINE_OTHER_NONE, false);
+    g.color_combine(
+        GR_COMBINE_FUNCTION_LOCAL,
+        GR_COMBINE_FACTOR_NONE,
+        GR_COMBINE_LOCAL_ITERATED,
+        GR_COMBINE_OTHER_NONE,
+        false,
+    );
     g.buffer_clear(0, 0, w[1] as u32);
     let (sx, sy) = (640.0f32, 480.0f32);
     let a = vertex(0.3 * sx, 0.3 * sy, 255.0, 0.0, 0.0);
@@ -48,7 +61,14 @@ fn test04_gouraud_triangle_registers() {
 fn culling_and_zero_area() {
     let rec = Rec::default();
     let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
-    assert!(g.win_open(GR_RESOLUTION_640x480, GR_REFRESH_60Hz, GR_COLORFORMAT_ARGB, GR_ORIGIN_UPPER_LEFT, 2, 1));
+    assert!(g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ARGB,
+        GR_ORIGIN_UPPER_LEFT,
+        2,
+        1
+    ));
     g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
     let a = vertex(10.0, 10.0, 0.0, 0.0, 0.0);
     let b = vertex(100.0, 10.0, 0.0, 0.0, 0.0);
@@ -64,4 +84,42 @@ fn culling_and_zero_area() {
     g.draw_triangle(&a, &a, &c);
     let s = g.stats();
     assert_eq!((s.triangles_in, s.triangles_drawn), (5, 2));
+}
+
+/// test02 (glide3x/sst1/glide3/tests/test02.c): 100 lines from (i/100, 0) to
+/// (1, i/100), flat white. Every line's two half-triangles must match the trace.
+#[test]
+fn test02_lines_registers() {
+    let rec = Rec::default();
+    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
+    g.sst_select(0);
+    assert!(g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ABGR,
+        GR_ORIGIN_UPPER_LEFT,
+        2,
+        1
+    ));
+    let mut w = [0i32; 2];
+    g.get(GR_WDEPTH_MIN_MAX, 8, &mut w);
+    g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
+    g.color_combine(
+        GR_COMBINE_FUNCTION_LOCAL,
+        GR_COMBINE_FACTOR_NONE,
+        GR_COMBINE_LOCAL_CONSTANT,
+        GR_COMBINE_OTHER_NONE,
+        false,
+    );
+    g.constant_color_value(0xffffff);
+    g.buffer_clear(0, 0, w[1] as u16 as u32);
+    for i in 0..100 {
+        let pos = i as f32 / 100.0;
+        let a = vertex(pos * 640.0, 0.0, 0.0, 0.0, 0.0);
+        let b = vertex(640.0, pos * 480.0, 0.0, 0.0, 0.0);
+        g.draw_line(&a, &b);
+    }
+    let ours = rec.0.borrow().clone();
+    assert_prefix(&ours, &trace("test02"), "test02 lines");
+    assert_eq!(g.stats().lines, 100);
 }

@@ -25,10 +25,19 @@ mod tests {
     #[test]
     fn all_functions_at_the_reference() {
         use sst1_regs::CompareFunction::*;
-        let at: Vec<bool> = [Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always]
-            .iter()
-            .map(|&f| test(f, 0x80, 0x80))
-            .collect();
+        let at: Vec<bool> = [
+            Never,
+            Less,
+            Equal,
+            LessEqual,
+            Greater,
+            NotEqual,
+            GreaterEqual,
+            Always,
+        ]
+        .iter()
+        .map(|&f| test(f, 0x80, 0x80))
+        .collect();
         assert_eq!(at, [false, false, true, true, false, false, true, true]);
         assert!(test(Less, 0x7f, 0x80) && test(Greater, 0x81, 0x80));
     }

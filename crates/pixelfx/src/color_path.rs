@@ -50,8 +50,11 @@ pub fn select_other(cp: FbzColorPath, i: &Inputs) -> Rgba {
 #[inline]
 pub fn select_local(cp: FbzColorPath, i: &Inputs) -> Rgba {
     // localselect_override: texture alpha bit 7 chooses color0 instead of iterated.
-    let use_color0 =
-        if cp.cc_localselect_override() { i.texel.a & 0x80 != 0 } else { cp.cc_localselect() };
+    let use_color0 = if cp.cc_localselect_override() {
+        i.texel.a & 0x80 != 0
+    } else {
+        cp.cc_localselect()
+    };
     let rgb = if use_color0 { i.color0 } else { i.iterated };
     let a = match cp.cca_localselect() {
         AlphaLocalSelect::IteratedAlpha => i.iterated.a,
@@ -90,7 +93,11 @@ pub fn combine(cp: FbzColorPath, other: Rgba, local: Rgba, texel_alpha: u8) -> R
         if cp.cc_sub_clocal() {
             v -= l[c];
         }
-        let f = if cp.cc_reverse_blend() { factor[c] } else { factor[c] ^ 0xff };
+        let f = if cp.cc_reverse_blend() {
+            factor[c]
+        } else {
+            factor[c] ^ 0xff
+        };
         v = (v * (f + 1)) >> 8;
         // Bits 15:14 as one field: 1 adds c_local, 2 adds a_local, 3 is reserved (adds
         // nothing). Source: DOSBox Staging and MAME treat it as a 2-bit field.
@@ -112,11 +119,19 @@ pub fn combine(cp: FbzColorPath, other: Rgba, local: Rgba, texel_alpha: u8) -> R
         CcMselect::TextureAlpha => texel_alpha as i32,
         _ => 0,
     };
-    let mut a = if cp.cca_zero_other() { 0 } else { other.a as i32 };
+    let mut a = if cp.cca_zero_other() {
+        0
+    } else {
+        other.a as i32
+    };
     if cp.cca_sub_clocal() {
         a -= local.a as i32;
     }
-    let f = if cp.cca_reverse_blend() { factor } else { factor ^ 0xff };
+    let f = if cp.cca_reverse_blend() {
+        factor
+    } else {
+        factor ^ 0xff
+    };
     a = (a * (f + 1)) >> 8;
     // cca_add_clocal and cca_add_alocal both add a_local (spec 5.16 bits 23-24).
     if cp.cca_add_clocal() || cp.cca_add_alocal() {
@@ -125,15 +140,30 @@ pub fn combine(cp: FbzColorPath, other: Rgba, local: Rgba, texel_alpha: u8) -> R
     let a = a.clamp(0, 255);
     let a = if cp.cca_invert_output() { a ^ 0xff } else { a };
 
-    Rgba { r: rgb[0] as u8, g: rgb[1] as u8, b: rgb[2] as u8, a: a as u8 }
+    Rgba {
+        r: rgb[0] as u8,
+        g: rgb[1] as u8,
+        b: rgb[2] as u8,
+        a: a as u8,
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    const RED: Rgba = Rgba { r: 200, g: 100, b: 50, a: 128 };
-    const LOCAL: Rgba = Rgba { r: 10, g: 20, b: 30, a: 64 };
+    const RED: Rgba = Rgba {
+        r: 200,
+        g: 100,
+        b: 50,
+        a: 128,
+    };
+    const LOCAL: Rgba = Rgba {
+        r: 10,
+        g: 20,
+        b: 30,
+        a: 64,
+    };
 
     #[test]
     fn pass_through_other() {
@@ -147,7 +177,14 @@ mod tests {
         // cc_mselect = c_local (1 << 10), reverse blend (bit 13): other * (local + 1) >> 8
         let cp = FbzColorPath(1 << 10 | 1 << 13);
         let out = combine(cp, RED, LOCAL, 0);
-        assert_eq!((out.r, out.g, out.b), (((200 * 11) >> 8) as u8, ((100 * 21) >> 8) as u8, ((50 * 31) >> 8) as u8));
+        assert_eq!(
+            (out.r, out.g, out.b),
+            (
+                ((200 * 11) >> 8) as u8,
+                ((100 * 21) >> 8) as u8,
+                ((50 * 31) >> 8) as u8
+            )
+        );
         // sub c_local then add c_local, invert
         let cp = FbzColorPath(1 << 9 | 1 << 14 | 1 << 16);
         let out = combine(cp, RED, LOCAL, 0);
@@ -158,13 +195,37 @@ mod tests {
     fn negative_results_clamp_to_zero() {
         // zero_other, sub_clocal: -local, factor 0xff -> clamps to 0.
         let cp = FbzColorPath(1 << 8 | 1 << 9 | 1 << 17 | 1 << 18);
-        assert_eq!(combine(cp, RED, LOCAL, 0), Rgba { r: 0, g: 0, b: 0, a: 0 });
+        assert_eq!(
+            combine(cp, RED, LOCAL, 0),
+            Rgba {
+                r: 0,
+                g: 0,
+                b: 0,
+                a: 0
+            }
+        );
     }
 
     #[test]
     fn chroma_ignores_alpha() {
-        assert!(chroma_killed(Rgba { r: 1, g: 2, b: 3, a: 9 }, 0xff01_0203));
-        assert!(!chroma_killed(Rgba { r: 1, g: 2, b: 4, a: 9 }, 0x0001_0203));
+        assert!(chroma_killed(
+            Rgba {
+                r: 1,
+                g: 2,
+                b: 3,
+                a: 9
+            },
+            0xff01_0203
+        ));
+        assert!(!chroma_killed(
+            Rgba {
+                r: 1,
+                g: 2,
+                b: 4,
+                a: 9
+            },
+            0x0001_0203
+        ));
     }
 
     #[test]
@@ -172,12 +233,18 @@ mod tests {
         let i = Inputs {
             iterated: RED,
             color0: LOCAL,
-            texel: Rgba { a: 0x80, ..Default::default() },
+            texel: Rgba {
+                a: 0x80,
+                ..Default::default()
+            },
             ..Default::default()
         };
         let cp = FbzColorPath(1 << 7);
         assert_eq!(select_local(cp, &i).r, LOCAL.r);
-        let i = Inputs { texel: Rgba::default(), ..i };
+        let i = Inputs {
+            texel: Rgba::default(),
+            ..i
+        };
         assert_eq!(select_local(cp, &i).r, RED.r);
     }
 }

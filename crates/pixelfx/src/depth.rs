@@ -50,10 +50,19 @@ mod tests {
     #[test]
     fn functions() {
         use sst1_regs::CompareFunction::*;
-        let r: Vec<bool> = [Never, Less, Equal, LessEqual, Greater, NotEqual, GreaterEqual, Always]
-            .iter()
-            .map(|&f| test(f, 5, 5))
-            .collect();
+        let r: Vec<bool> = [
+            Never,
+            Less,
+            Equal,
+            LessEqual,
+            Greater,
+            NotEqual,
+            GreaterEqual,
+            Always,
+        ]
+        .iter()
+        .map(|&f| test(f, 5, 5))
+        .collect();
         assert_eq!(r, [false, false, true, true, false, false, true, true]);
         assert!(test(Less, 4, 5) && !test(Greater, 4, 5));
     }

@@ -4,8 +4,8 @@
 //!
 //! Rows are raster rows: with `fbzMode.y_origin` set they are flipped like triangle rows
 //! (spec 5.21: "the orientation of the Y origin is defined by fbzMode bit 17"). The
-//! dither cell uses the unflipped row, as for triangles. Source: spec 5.23; MAME and
-//! DOSBox Staging agree.
+//! dither cell row follows [`crate::profile::PatternRow`], as for triangles.
+//! Source: spec 5.23; MAME and DOSBox Staging agree on everything else.
 
 use sst1_regs::{addr, Rgba};
 
@@ -21,8 +21,16 @@ impl Fbi {
         let cy = self.reg(addr::CLIP_LOW_Y_HIGH_Y);
         let (left, right) = (((cl >> 16) & 0x3ff) as i32, (cl & 0x3ff) as i32);
         let (low, high) = (((cy >> 16) & 0x3ff) as i32, (cy & 0x3ff) as i32);
-        let dest = if mode.rgb_buffer_mask() { self.colour_buffer(mode.draw_buffer()) } else { None };
-        let aux = if mode.aux_buffer_mask() { self.fb.aux_base() } else { None };
+        let dest = if mode.rgb_buffer_mask() {
+            self.colour_buffer(mode.draw_buffer())
+        } else {
+            None
+        };
+        let aux = if mode.aux_buffer_mask() {
+            self.fb.aux_base()
+        } else {
+            None
+        };
         if dest.is_none() && aux.is_none() {
             return;
         }
@@ -33,14 +41,17 @@ impl Fbi {
         let mut cell = [[0u16; 4]; 4];
         for (cy, row) in cell.iter_mut().enumerate() {
             for (cx, v) in row.iter_mut().enumerate() {
-                *v = self.dither.rgb565(st.dither, cx as u32, cy as u32, colour.r, colour.g, colour.b);
+                *v = self.dither.rgb565(
+                    st.dither, cx as u32, cy as u32, colour.r, colour.g, colour.b,
+                );
             }
         }
         for y in low..high {
             let scry = self.screen_y(y, mode.y_origin());
             for x in left..right {
                 if let Some(i) = dest.and_then(|d| self.fb.index(d, x, scry)) {
-                    self.fb.ram[i] = cell[(y & 3) as usize][(x & 3) as usize];
+                    let prow = self.pattern_row(y, scry);
+                    self.fb.ram[i] = cell[(prow & 3) as usize][(x & 3) as usize];
                     self.stats.pixels_out += 1;
                 }
                 if let Some(i) = aux.and_then(|a| self.fb.index(a, x, scry)) {

@@ -71,7 +71,11 @@ impl FrameBuffer {
         let step = buffer_pages * BUFFER_PAGE_BYTES;
         // Offsets past the end of memory are clamped to its last byte (MAME, DOSBox).
         let clamp = |o: u32| o.min(mask);
-        let (rgb2, aux) = if triple { (Some(2 * step), None) } else { (None, Some(2 * step)) };
+        let (rgb2, aux) = if triple {
+            (Some(2 * step), None)
+        } else {
+            (None, Some(2 * step))
+        };
         self.layout = Layout {
             row_pixels: TILE_WIDTH * x_tiles,
             rgb_offset: [Some(0), Some(clamp(step)), rgb2.map(clamp)],
@@ -90,7 +94,12 @@ impl FrameBuffer {
     /// Word index of the start of colour buffer `buf`, if it exists.
     #[inline]
     pub fn rgb_base(&self, buf: usize) -> Option<usize> {
-        self.layout.rgb_offset.get(buf).copied().flatten().map(|o| (o / 2) as usize)
+        self.layout
+            .rgb_offset
+            .get(buf)
+            .copied()
+            .flatten()
+            .map(|o| (o / 2) as usize)
     }
 
     /// Word index of the start of the aux buffer, if it exists.

@@ -123,9 +123,9 @@ impl Fbi {
             addr::FOG_MODE => self.regs[idx] = value & 0x3f,
             addr::FBZ_MODE => self.regs[idx] = value & 0x001f_ffff,
             addr::LFB_MODE => self.regs[idx] = value & 0x0001_ffff,
-            addr::FOG_TABLE..=addr::FOG_TABLE_LAST => {
-                self.fog_table.write(((offset - addr::FOG_TABLE) / 4) as usize, value)
-            }
+            addr::FOG_TABLE..=addr::FOG_TABLE_LAST => self
+                .fog_table
+                .write(((offset - addr::FOG_TABLE) / 4) as usize, value),
             addr::FBI_INIT0 => {
                 self.regs[idx] = value;
                 // Bit 1: FBI graphics reset clears the counters (MAME, DOSBox Staging).
@@ -195,6 +195,16 @@ impl Fbi {
             ColorBuffer::Front => self.fb.rgb_base(self.fb.front),
             ColorBuffer::Back => self.fb.rgb_base(self.fb.back),
             _ => None,
+        }
+    }
+
+    /// The row the dither and stipple patterns use for raster row `y` landing on frame-buffer
+    /// row `scry`.
+    #[inline]
+    pub fn pattern_row(&self, y: i32, scry: i32) -> i32 {
+        match self.profile.pattern_row {
+            crate::profile::PatternRow::Screen => scry,
+            crate::profile::PatternRow::Raster => y,
         }
     }
 

@@ -25,7 +25,10 @@ impl Iterated {
     /// The iterators at pixel offset `(dx, dy)` from vertex A.
     #[inline]
     pub fn at(p: &TriangleParams, dx: i32, dy: i32) -> Self {
-        let lin = |s: i32, gx: i32, gy: i32| s.wrapping_add(dy.wrapping_mul(gy)).wrapping_add(dx.wrapping_mul(gx));
+        let lin = |s: i32, gx: i32, gy: i32| {
+            s.wrapping_add(dy.wrapping_mul(gy))
+                .wrapping_add(dx.wrapping_mul(gx))
+        };
         Self {
             argb: [
                 lin(p.start[0], p.dx[0], p.dy[0]),
@@ -34,7 +37,9 @@ impl Iterated {
                 lin(p.start[3], p.dx[3], p.dy[3]),
             ],
             z: lin(p.start_z, p.dzdx, p.dzdy),
-            w: p.start_w.wrapping_add((dy as i64).wrapping_mul(p.dwdy)).wrapping_add((dx as i64).wrapping_mul(p.dwdx)),
+            w: p.start_w
+                .wrapping_add((dy as i64).wrapping_mul(p.dwdy))
+                .wrapping_add((dx as i64).wrapping_mul(p.dwdx)),
         }
     }
 
@@ -73,7 +78,9 @@ pub fn clamp_z(z: Fx20_12) -> u16 {
 /// 4-bit exponent = leading zeros, 12-bit inverted mantissa, plus one).
 ///
 /// The references agree for ordinary values and differ only at the edges.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub enum WFloatEdges {
     /// DOSBox Staging: W with any of bits 47:32 set gives 0; W below 1.0 >> 16 (bits 31:16
     /// clear) gives 0xffff; the final +1 saturates at 0xffff.

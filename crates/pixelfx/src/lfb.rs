@@ -54,11 +54,21 @@ fn decode16(fmt: u32, lane: u32, v: u32) -> (Option<[u8; 3]>, Option<u8>) {
     // Lanes 2 and 3 put the 1-bit/unused field at the bottom for 555 formats.
     let low_flag = lane >= 2;
     match fmt {
-        0 => (Some(lanes(swap, expand5(v >> 11), expand6(v >> 5), expand5(v))), None),
+        0 => (
+            Some(lanes(swap, expand5(v >> 11), expand6(v >> 5), expand5(v))),
+            None,
+        ),
         1 | 2 => {
-            let (c, flag) = if low_flag { (v >> 1, v & 1) } else { (v, (v >> 15) & 1) };
+            let (c, flag) = if low_flag {
+                (v >> 1, v & 1)
+            } else {
+                (v, (v >> 15) & 1)
+            };
             let rgb = lanes(swap, expand5(c >> 10), expand5(c >> 5), expand5(c));
-            (Some(rgb), (fmt == 2).then_some(if flag != 0 { 0xff } else { 0 }))
+            (
+                Some(rgb),
+                (fmt == 2).then_some(if flag != 0 { 0xff } else { 0 }),
+            )
         }
         _ => (None, None),
     }
@@ -74,7 +84,11 @@ pub fn decode(mode: LfbMode, data: u32) -> Option<(usize, [LfbPixel; 2])> {
         0..=2 => {
             for (p, &h) in px.iter_mut().zip(&halves) {
                 let (rgb, alpha) = decode16(fmt, lane, h);
-                *p = LfbPixel { rgb, alpha, depth: None };
+                *p = LfbPixel {
+                    rgb,
+                    alpha,
+                    depth: None,
+                };
             }
             Some((2, px))
         }
@@ -86,17 +100,29 @@ pub fn decode(mode: LfbMode, data: u32) -> Option<(usize, [LfbPixel; 2])> {
                 (bytes[0], [bytes[1], bytes[2], bytes[3]])
             };
             let rgb = lanes(lane & 1 != 0, c[0], c[1], c[2]);
-            px[0] = LfbPixel { rgb: Some(rgb), alpha: (fmt == 5).then_some(a), depth: None };
+            px[0] = LfbPixel {
+                rgb: Some(rgb),
+                alpha: (fmt == 5).then_some(a),
+                depth: None,
+            };
             Some((1, px))
         }
         12..=14 => {
             let (rgb, alpha) = decode16(fmt - 12, lane, halves[0]);
-            px[0] = LfbPixel { rgb, alpha, depth: Some(halves[1] as u16) };
+            px[0] = LfbPixel {
+                rgb,
+                alpha,
+                depth: Some(halves[1] as u16),
+            };
             Some((1, px))
         }
         15 => {
             for (p, &h) in px.iter_mut().zip(&halves) {
-                *p = LfbPixel { rgb: None, alpha: None, depth: Some(h as u16) };
+                *p = LfbPixel {
+                    rgb: None,
+                    alpha: None,
+                    depth: Some(h as u16),
+                };
             }
             Some((2, px))
         }
@@ -121,13 +147,23 @@ impl Fbi {
         if mode.word_swap_writes() {
             data = data.rotate_left(16);
         }
-        let Some((count, pixels)) = decode(mode, data) else { return };
-        let (x0, y) = if count == 2 {
-            (((offset >> 1) & 0x3fe) as i32, ((offset >> 11) & 0x3ff) as i32)
-        } else {
-            (((offset >> 2) & 0x3ff) as i32, ((offset >> 12) & 0x3ff) as i32)
+        let Some((count, pixels)) = decode(mode, data) else {
+            return;
         };
-        let Some(dest) = self.colour_buffer(mode.write_buffer_select()) else { return };
+        let (x0, y) = if count == 2 {
+            (
+                ((offset >> 1) & 0x3fe) as i32,
+                ((offset >> 11) & 0x3ff) as i32,
+            )
+        } else {
+            (
+                ((offset >> 2) & 0x3ff) as i32,
+                ((offset >> 12) & 0x3ff) as i32,
+            )
+        };
+        let Some(dest) = self.colour_buffer(mode.write_buffer_select()) else {
+            return;
+        };
         let za = self.reg(addr::ZA_COLOR);
         let fbz = self.fbz_mode();
         if mode.enable_pixel_pipeline() {
@@ -145,11 +181,30 @@ impl Fbi {
                 }
                 let depth = p.depth.unwrap_or(za as u16);
                 let rgb = p.rgb.unwrap_or([color1.r, color1.g, color1.b]);
-                let colour = Rgba { r: rgb[0], g: rgb[1], b: rgb[2], a: p.alpha.unwrap_or((za >> 24) as u8) };
+                let colour = Rgba {
+                    r: rgb[0],
+                    g: rgb[1],
+                    b: rgb[2],
+                    a: p.alpha.unwrap_or((za >> 24) as u8),
+                };
                 // Depth enters as if iterated: Z in 20.12, W in the 32.32 iterator scale.
-                let it = Iterated { argb: [0; 4], z: (depth as i32) << 12, w: (depth as i64) << 14 };
+                let it = Iterated {
+                    argb: [0; 4],
+                    z: (depth as i32) << 12,
+                    w: (depth as i64) << 14,
+                };
                 let mut stipple = st.stipple;
-                let r = self.shade_pixel(&st, x, y, scry, &it, Source::Lfb(colour), &mut stipple, Rgba::default);
+                let prow = self.pattern_row(y, scry);
+                let r = self.shade_pixel(
+                    &st,
+                    x,
+                    prow,
+                    scry,
+                    &it,
+                    Source::Lfb(colour),
+                    &mut stipple,
+                    Rgba::default,
+                );
                 self.count(r);
             }
         } else {
@@ -160,7 +215,9 @@ impl Fbi {
                 let x = x0 + i as i32;
                 if let Some([r, g, b]) = p.rgb {
                     if let Some(idx) = self.fb.index(dest, x, scry) {
-                        self.fb.ram[idx] = self.dither.rgb565(dither, x as u32, y as u32, r, g, b);
+                        let prow = self.pattern_row(y, scry);
+                        self.fb.ram[idx] =
+                            self.dither.rgb565(dither, x as u32, prow as u32, r, g, b);
                     }
                 }
                 if let Some(idx) = aux.and_then(|a| self.fb.index(a, x, scry)) {
@@ -190,7 +247,10 @@ impl Fbi {
         };
         let Some(base) = base else { return 0xffff_ffff };
         let scry = self.screen_y(y, mode.y_origin());
-        let (Some(i0), Some(i1)) = (self.fb.index(base, x, scry), self.fb.index(base, x + 1, scry)) else {
+        let (Some(i0), Some(i1)) = (
+            self.fb.index(base, x, scry),
+            self.fb.index(base, x + 1, scry),
+        ) else {
             return 0xffff_ffff;
         };
         let mut data = self.fb.ram[i0] as u32 | (self.fb.ram[i1] as u32) << 16;
@@ -210,7 +270,10 @@ mod tests {
 
     #[test]
     fn expand_replicates_high_bits() {
-        assert_eq!((expand5(0x1f), expand5(0x10), expand6(0x3f), expand6(0x20)), (0xff, 0x84, 0xff, 0x82));
+        assert_eq!(
+            (expand5(0x1f), expand5(0x10), expand6(0x3f), expand6(0x20)),
+            (0xff, 0x84, 0xff, 0x82)
+        );
     }
 
     #[test]
@@ -235,9 +298,15 @@ mod tests {
     #[test]
     fn argb8888_lanes_and_depth_formats() {
         let (n, p) = decode(LfbMode(5), 0x8011_2233).unwrap();
-        assert_eq!((n, p[0].rgb, p[0].alpha), (1, Some([0x11, 0x22, 0x33]), Some(0x80)));
+        assert_eq!(
+            (n, p[0].rgb, p[0].alpha),
+            (1, Some([0x11, 0x22, 0x33]), Some(0x80))
+        );
         let (_, p) = decode(LfbMode(5 | 2 << 9), 0x1122_3380).unwrap();
-        assert_eq!((p[0].rgb, p[0].alpha), (Some([0x11, 0x22, 0x33]), Some(0x80)));
+        assert_eq!(
+            (p[0].rgb, p[0].alpha),
+            (Some([0x11, 0x22, 0x33]), Some(0x80))
+        );
         let (_, p) = decode(LfbMode(12), 0xabcd_001f).unwrap();
         assert_eq!((p[0].rgb, p[0].depth), (Some([0, 0, 0xff]), Some(0xabcd)));
         let (n, p) = decode(LfbMode(15), 0x1234_5678).unwrap();

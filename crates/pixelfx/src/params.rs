@@ -112,7 +112,13 @@ impl TriangleParams {
         } else {
             (offset, false)
         };
-        let fixed = |frac: i32| if float { float_to_fixed32(value, frac) as u32 } else { value };
+        let fixed = |frac: i32| {
+            if float {
+                float_to_fixed32(value, frac) as u32
+            } else {
+                value
+            }
+        };
         match reg {
             addr::VERTEX_AX => self.ax = fixed(4) as i16,
             addr::VERTEX_AY => self.ay = fixed(4) as i16,
@@ -160,8 +166,11 @@ impl TriangleParams {
         let dx = 8 - (self.ax as i32 & 15);
         let dy = 8 - (self.ay as i32 & 15);
         for i in 0..4 {
-            self.start[i] = self.start[i]
-                .wrapping_add((dy.wrapping_mul(self.dy[i]).wrapping_add(dx.wrapping_mul(self.dx[i]))) >> 4);
+            self.start[i] = self.start[i].wrapping_add(
+                (dy.wrapping_mul(self.dy[i])
+                    .wrapping_add(dx.wrapping_mul(self.dx[i])))
+                    >> 4,
+            );
         }
         // Z uses a 64-bit product so that large gradients do not wrap before the shift.
         let dz = ((dy as i64 * self.dzdy as i64) >> 4) + ((dx as i64 * self.dzdx as i64) >> 4);
@@ -217,7 +226,11 @@ mod tests {
 
     #[test]
     fn subpixel_adjust_writes_back() {
-        let mut p = TriangleParams { ax: 16 * 3 + 4, ay: 16 * 2, ..Default::default() };
+        let mut p = TriangleParams {
+            ax: 16 * 3 + 4,
+            ay: 16 * 2,
+            ..Default::default()
+        };
         p.dx[0] = 0x1000;
         p.dy[0] = 0x2000;
         assert_eq!(p.subpixel_adjust(), (4, 8));

@@ -59,9 +59,16 @@ impl DrawState {
         if fbi.profile().clip_right == ClipRightEdge::DropLastColumn {
             right -= 1;
         }
-        let dither_matrix =
-            if mode.dither_2x2() { DitherKind::Dither2x2 } else { DitherKind::Dither4x4 };
-        let dither = if mode.enable_dithering() { dither_matrix } else { DitherKind::Off };
+        let dither_matrix = if mode.dither_2x2() {
+            DitherKind::Dither2x2
+        } else {
+            DitherKind::Dither4x4
+        };
+        let dither = if mode.enable_dithering() {
+            dither_matrix
+        } else {
+            DitherKind::Off
+        };
         Self {
             color_path: FbzColorPath(fbi.reg(addr::FBZ_COLOR_PATH)),
             mode,
@@ -73,7 +80,12 @@ impl DrawState {
             za_color: fbi.reg(addr::ZA_COLOR),
             fog_color: Rgba::from_argb(fbi.reg(addr::FOG_COLOR)),
             stipple: fbi.reg(addr::STIPPLE),
-            clip: (((cl >> 16) & 0x3ff) as i32, right, ((cy >> 16) & 0x3ff) as i32, (cy & 0x3ff) as i32),
+            clip: (
+                ((cl >> 16) & 0x3ff) as i32,
+                right,
+                ((cy >> 16) & 0x3ff) as i32,
+                (cy & 0x3ff) as i32,
+            ),
             dest,
             aux: fbi.fb.aux_base(),
             dither,
@@ -96,12 +108,14 @@ impl Fbi {
     /// Run one pixel through the pipeline. `x` is the screen column, `y` the raster row
     /// (used for dithering), `scry` the frame-buffer row after the Y-origin flip.
     /// `texel` is called only if the pixel survives the depth test and texturing is on.
+    /// `prow` is the row the dither and stipple patterns are indexed with (see
+    /// [`crate::profile::PatternRow`]).
     #[inline]
     pub(crate) fn shade_pixel(
         &mut self,
         st: &DrawState,
         x: i32,
-        y: i32,
+        prow: i32,
         scry: i32,
         it: &Iterated,
         source: Source,
@@ -113,7 +127,13 @@ impl Fbi {
 
         // --- stipple ---
         if mode.enable_stipple()
-            && !stipple::test(mode.enable_stipple_pattern(), stipple_state, st.stipple, x, y)
+            && !stipple::test(
+                mode.enable_stipple_pattern(),
+                stipple_state,
+                st.stipple,
+                x,
+                prow,
+            )
         {
             return Err(Kill::Stipple);
         }
@@ -125,8 +145,11 @@ impl Fbi {
         let depth_value = depth::value(mode.wbuffer_select(), z16, wf, bias);
         let aux_index = st.aux.and_then(|a| self.fb.index(a, x, scry));
         if mode.enable_depthbuffer() {
-            let source_depth =
-                if mode.depth_source_compare() { (st.za_color & 0xffff) as i32 } else { depth_value };
+            let source_depth = if mode.depth_source_compare() {
+                (st.za_color & 0xffff) as i32
+            } else {
+                depth_value
+            };
             // Without an aux buffer only "never" can fail (MAME, DOSBox Staging).
             let dest = aux_index.map(|i| self.fb.ram[i]);
             let pass = match dest {
@@ -139,7 +162,11 @@ impl Fbi {
         }
 
         // --- colour selection ---
-        let texel = if st.color_path.texture_enable() { texel() } else { Rgba::default() };
+        let texel = if st.color_path.texture_enable() {
+            texel()
+        } else {
+            Rgba::default()
+        };
         let iterated = match source {
             Source::Triangle => Rgba {
                 r: clamp_colour(it.argb[0]),
@@ -170,7 +197,8 @@ impl Fbi {
             return Err(Kill::AlphaMask);
         }
         let am = st.alpha_mode;
-        if am.alpha_test_enable() && !alpha_test::test(am.alpha_function(), other.a, am.alpha_ref()) {
+        if am.alpha_test_enable() && !alpha_test::test(am.alpha_function(), other.a, am.alpha_ref())
+        {
             return Err(Kill::AlphaFunc);
         }
 
@@ -187,7 +215,13 @@ impl Fbi {
             wfloat: wf,
             depth_bias: bias.map(|b| b as i16),
         };
-        let fogged = fog::apply_fog(st.fog_mode, st.fog_color, &self.fog_table, &fog_input, profile.fog);
+        let fogged = fog::apply_fog(
+            st.fog_mode,
+            st.fog_color,
+            &self.fog_table,
+            &fog_input,
+            profile.fog,
+        );
 
         // --- alpha blend ---
         let dest_index = self.fb.index(st.dest, x, scry);
@@ -197,7 +231,9 @@ impl Fbi {
                 prefog: combined,
                 dst_rgb565: dest_index.map_or(0, |i| self.fb.ram[i]),
                 dst_aux: aux_index.map(|i| self.fb.ram[i]),
-                dither_value: self.dither.matrix_value(st.dither_matrix, x as u32, y as u32),
+                dither_value: self
+                    .dither
+                    .matrix_value(st.dither_matrix, x as u32, prow as u32),
             };
             blend::alpha_blend(am, mode, &input, profile.blend)
         } else {
@@ -207,7 +243,9 @@ impl Fbi {
         // --- write ---
         if mode.rgb_buffer_mask() {
             if let Some(i) = dest_index {
-                self.fb.ram[i] = self.dither.rgb565(st.dither, x as u32, y as u32, out.r, out.g, out.b);
+                self.fb.ram[i] =
+                    self.dither
+                        .rgb565(st.dither, x as u32, prow as u32, out.r, out.g, out.b);
             }
         }
         let aux_enabled = match profile.aux_write {
@@ -218,8 +256,11 @@ impl Fbi {
         };
         if aux_enabled {
             if let Some(i) = aux_index {
-                self.fb.ram[i] =
-                    if mode.enable_alpha_planes() { out.a as u16 } else { depth_value as u16 };
+                self.fb.ram[i] = if mode.enable_alpha_planes() {
+                    out.a as u16
+                } else {
+                    depth_value as u16
+                };
             }
         }
         Ok(())

@@ -28,6 +28,22 @@ pub enum AuxWrite {
     MaskAndDepthOrAlphaPlanes,
 }
 
+/// Which row number the dither matrix and the stipple pattern are indexed with when
+/// the Y origin is flipped (`fbzMode` bit 17).
+///
+/// Reading the sources suggests MAME (`scry`) and 86Box (`real_y`) use the flipped row,
+/// but the goldens say otherwise: with `Screen`, the 18 glide-sdk traces (Glide draws with
+/// a lower-left origin and dithering on) fail on 119,752 pixels where all three references
+/// agree; with `Raster` they fail on none. So all three behave as `Raster` here.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum PatternRow {
+    /// The frame-buffer row the pixel lands on, after the flip.
+    Screen,
+    /// The raster row before the flip (DOSBox Staging; the goldens of all three).
+    #[default]
+    Raster,
+}
+
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct PixelProfile {
@@ -35,6 +51,7 @@ pub struct PixelProfile {
     pub wfloat: WFloatEdges,
     pub clip_right: ClipRightEdge,
     pub aux_write: AuxWrite,
+    pub pattern_row: PatternRow,
     pub dither_2x2: DitherMatrix2x2,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,

@@ -32,7 +32,9 @@ impl Fbi {
     pub fn draw_triangle<T: TexelSource>(&mut self, tex: &mut T) {
         self.stats.triangles += 1;
         let mode = self.fbz_mode();
-        let Some(dest) = self.colour_buffer(mode.draw_buffer()) else { return };
+        let Some(dest) = self.colour_buffer(mode.draw_buffer()) else {
+            return;
+        };
         let st = DrawState::capture(self, dest);
         let flip = mode.y_origin();
         let (ax, ay) = ((self.params.ax >> 4) as i32, (self.params.ay >> 4) as i32);
@@ -56,10 +58,18 @@ impl Fbi {
             let dy = span.y - ay;
             let mut it = Iterated::at(&params, start - ax, dy);
             let mut stipple = st.stipple;
+            let prow = self.pattern_row(span.y, scry);
             for x in start..stop {
-                let r = self.shade_pixel(&st, x, span.y, scry, &it, Source::Triangle, &mut stipple, || {
-                    tex.texel(x - ax, dy, x, span.y)
-                });
+                let r = self.shade_pixel(
+                    &st,
+                    x,
+                    prow,
+                    scry,
+                    &it,
+                    Source::Triangle,
+                    &mut stipple,
+                    || tex.texel(x - ax, dy, x, span.y),
+                );
                 self.count(r);
                 it.step_x(&params);
             }

@@ -18,7 +18,9 @@ use crate::params::TriangleParams;
 ///
 /// Both round half down (`x.5` goes to `x`) for positive values; they differ for
 /// negative coordinates, which only occur for partly off-screen triangles.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub enum EdgeRounding {
     /// `floor(v)`, plus one if the remaining fraction exceeds 0.5 (MAME `round_coordinate`).
     #[default]
@@ -69,14 +71,19 @@ pub fn spans(p: &TriangleParams, rounding: EdgeRounding) -> impl Iterator<Item =
     let [(x1, y1), (x2, y2), (x3, y3)] = v;
     let top = rounding.round(y1);
     let bottom = rounding.round(y3);
-    let slope = |xa: f32, ya: f32, xb: f32, yb: f32| if yb == ya { 0.0 } else { (xb - xa) / (yb - ya) };
+    let slope =
+        |xa: f32, ya: f32, xb: f32, yb: f32| if yb == ya { 0.0 } else { (xb - xa) / (yb - ya) };
     let d13 = slope(x1, y1, x3, y3);
     let d12 = slope(x1, y1, x2, y2);
     let d23 = slope(x2, y2, x3, y3);
     (top..bottom.max(top)).filter_map(move |y| {
         let fy = y as f32 + 0.5;
         let a = x1 + (fy - y1) * d13;
-        let b = if fy < y2 { x1 + (fy - y1) * d12 } else { x2 + (fy - y2) * d23 };
+        let b = if fy < y2 {
+            x1 + (fy - y1) * d12
+        } else {
+            x2 + (fy - y2) * d23
+        };
         let (mut start, mut stop) = (rounding.round(a), rounding.round(b));
         if start == stop {
             return None;
@@ -108,26 +115,57 @@ mod tests {
     #[test]
     fn rounding_modes() {
         let r = EdgeRounding::FloorHalfDown;
-        assert_eq!((r.round(2.5), r.round(2.5625), r.round(-0.75), r.round(-0.5)), (2, 3, -1, -1));
+        assert_eq!(
+            (r.round(2.5), r.round(2.5625), r.round(-0.75), r.round(-0.5)),
+            (2, 3, -1, -1)
+        );
         let t = EdgeRounding::TruncHalfDown;
-        assert_eq!((t.round(2.5), t.round(2.5625), t.round(-0.75), t.round(-0.5)), (2, 3, 0, 0));
+        assert_eq!(
+            (t.round(2.5), t.round(2.5625), t.round(-0.75), t.round(-0.5)),
+            (2, 3, 0, 0)
+        );
     }
 
     #[test]
     fn right_triangle_spans() {
         // (0,0) (8,0) (0,8): row y covers x in [0, 8 - (y + 0.5)) rounded.
-        let s: Vec<Span> = spans(&tri((0.0, 0.0), (8.0, 0.0), (0.0, 8.0)), EdgeRounding::default()).collect();
+        let s: Vec<Span> = spans(
+            &tri((0.0, 0.0), (8.0, 0.0), (0.0, 8.0)),
+            EdgeRounding::default(),
+        )
+        .collect();
         // Row 7 samples x = 0.5, which rounds to an empty span.
         assert_eq!(s.len(), 7);
-        assert_eq!(s[0], Span { y: 0, start: 0, stop: 7 });
-        assert_eq!(s[6], Span { y: 6, start: 0, stop: 1 });
+        assert_eq!(
+            s[0],
+            Span {
+                y: 0,
+                start: 0,
+                stop: 7
+            }
+        );
+        assert_eq!(
+            s[6],
+            Span {
+                y: 6,
+                start: 0,
+                stop: 1
+            }
+        );
         let total: i32 = s.iter().map(|s| s.stop - s.start).sum();
         assert_eq!(total, 7 + 6 + 5 + 4 + 3 + 2 + 1);
     }
 
     #[test]
     fn degenerate_and_hostile_triangles() {
-        assert_eq!(spans(&tri((0.0, 5.0), (9.0, 5.0), (3.0, 5.0)), EdgeRounding::default()).count(), 0);
+        assert_eq!(
+            spans(
+                &tri((0.0, 5.0), (9.0, 5.0), (3.0, 5.0)),
+                EdgeRounding::default()
+            )
+            .count(),
+            0
+        );
         let p = TriangleParams {
             ax: i16::MIN,
             ay: i16::MIN,

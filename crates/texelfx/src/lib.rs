@@ -133,6 +133,24 @@ pub enum LodZeroFrac {
     Spec,
 }
 
+/// How a texture coordinate with a fraction becomes a texel index: the integer part of
+/// `S >> 24` without perspective, of `S / W` with it.
+///
+/// DOSBox Staging and 86Box (the default) shift or divide in integers, which rounds towards
+/// minus infinity, so a coordinate a hair below zero selects texel -1 (the last texel when
+/// wrapping). MAME's goldens behave as truncation towards zero there (its perspective path
+/// converts a double with `cvttpd`); on the conformance traces this shows as one column or
+/// diagonal of texels at S = 0 (`tex_filter_clamp`, `tex_clamp_wrap`, `tex_perspective`,
+/// `tmu2_projected`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum CoordRounding {
+    /// DOSBox Staging and 86Box: towards minus infinity.
+    #[default]
+    Floor,
+    /// MAME: towards zero.
+    TowardZero,
+}
+
 /// Switches for behaviour on which the references disagree. `Default` is the majority of
 /// MAME, DOSBox Staging and 86Box, except `trilinear`, which follows the spec.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -151,6 +169,8 @@ pub struct TexelProfile {
     pub trilinear: Trilinear,
     /// The `lod_zerofrac` bit.
     pub lod_zerofrac: LodZeroFrac,
+    /// Rounding of texture coordinates to texels.
+    pub coord_rounding: CoordRounding,
 }
 
 /// One texture mapping unit: its registers, texture memory, NCC tables and palette.
@@ -371,6 +391,14 @@ impl Tmu {
                 .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
         };
         let smp = self.sample(at(0), at(1), at(2), x, y);
+        // TEXDBG-BEGIN
+        if let Ok(v) = std::env::var("TEXDBG") {
+            let p: Vec<i32> = v.split(',').map(|s| s.parse().unwrap()).collect();
+            if p[0] == x && p[1] == y {
+                eprintln!("TMU{} x{x} y{y} s {:#x} t {:#x} w {:#x} lodbase {:#x} lod {:#x} tex {:?} mode {:08x} tlod {:08x}", self.index, at(0), at(1), at(2), self.lod_base, smp.lod, smp.texel, self.texture_mode, self.t_lod);
+            }
+        }
+        // TEXDBG-END
         let factors = Factors {
             detail: detail_factor(self.t_detail, smp.lod),
             lod_fraction: smp.lod_fraction,

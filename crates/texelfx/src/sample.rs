@@ -2,7 +2,8 @@
 //! clamp/wrap, point sampling and bilinear filtering (spec 5.50, 5.51).
 //!
 //! Coordinates become 24.8 texels of LOD 0: `S/W * 256` with a double-precision divide when
-//! `tpersp_st` is set, else `S >> 24` (both truncate towards zero), then are shifted down by
+//! `tpersp_st` is set, else `S >> 24` (rounded as [`crate::CoordRounding`] says), then are
+//! shifted down by
 //! the integer LOD. Point sampling drops the fraction; bilinear first subtracts half a texel
 //! and weighs the four neighbours by the top 4 bits of each fraction (the SST-1 keeps 4
 //! bits; Voodoo 2 keeps 8).
@@ -15,7 +16,7 @@
 //! older form of the same code; 86Box uses the same 4-bit weights).
 
 use crate::lod::{f64_to_i32_x86, pixel_lod, PixelLod};
-use crate::{BilinearPrecision, LodZeroFrac, Tmu};
+use crate::{BilinearPrecision, CoordRounding, LodZeroFrac, Tmu};
 use sst1_regs::{TLod, TextureMode};
 
 /// The result of one texel fetch.
@@ -35,12 +36,24 @@ impl Tmu {
     pub(crate) fn sample(&self, iters: i64, itert: i64, iterw: i64, x: i32, y: i32) -> Sample {
         let mode = TextureMode(self.texture_mode);
         let persp = mode.tpersp_st();
-        let (mut s, mut t) = if persp {
+        let floor = self.profile.coord_rounding == CoordRounding::Floor;
+        let (mut s, mut t) = if persp && floor && iterw != 0 {
+            let div = |v: i64| {
+                let q = (i128::from(v) << 8).div_euclid(i128::from(iterw));
+                q as i32
+            };
+            (div(iters), div(itert))
+        } else if persp {
             let recip = 256.0 / iterw as f64;
-            (
-                f64_to_i32_x86(iters as f64 * recip),
-                f64_to_i32_x86(itert as f64 * recip),
-            )
+            let div = |v: i64| {
+                let q = v as f64 * recip;
+                f64_to_i32_x86(if floor { q.floor() } else { q })
+            };
+            (div(iters), div(itert))
+        } else if floor {
+            // Source: DOSBox `(int32_t)(ITERS >> 14)`, 86Box `tmu0_s >> 28`: arithmetic
+            // shifts that keep the low bits when the value does not fit.
+            ((iters >> 24) as i32, (itert >> 24) as i32)
         } else {
             let to_i32 = |v: i64| i32::try_from(v / (1 << 24)).unwrap_or(i32::MIN);
             (to_i32(iters), to_i32(itert))

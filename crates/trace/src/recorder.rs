@@ -8,7 +8,9 @@ use crate::{ConfigKey, DumpBuffer, Trace, TraceOp};
 
 /// Wraps a [`RegisterBus`], forwards every call unchanged and logs it.
 ///
-/// Reads are logged with the value the wrapped bus returned.
+/// Reads are logged with the value the wrapped bus returned. Accesses are logged as made:
+/// one the trace formats reject (offset not 4-aligned or outside the aperture) makes the
+/// recorded trace unreadable once written out.
 pub struct Recorder<B: RegisterBus> {
     inner: B,
     trace: Trace,

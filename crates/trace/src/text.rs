@@ -133,8 +133,8 @@ impl<'a> Line<'a> {
     }
 }
 
-/// A 32-bit number: `0x` + hex digits, or decimal digits.
-fn parse_number(word: &str) -> Option<u32> {
+/// A 32-bit number as the format writes them: `0x` + hex digits, or decimal digits.
+pub fn parse_number(word: &str) -> Option<u32> {
     let (digits, radix) = match word.strip_prefix("0x").or_else(|| word.strip_prefix("0X")) {
         Some(hex) => (hex, 16),
         None => (word, 10),

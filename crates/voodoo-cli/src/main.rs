@@ -11,6 +11,7 @@ use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use sst1_board::{Board, BufferKind};
 use sst1_regs::{addr, map, RegisterBus};
+use sst1_trace::text::parse_number;
 use sst1_trace::{
     encode_binary, execute, load_trace, read_trace, rgb565_to_rgb8, write_dumps, write_text, Dump,
     OpCounts, Trace,
@@ -258,14 +259,6 @@ fn info(path: &Path) -> Result<(), String> {
         println!("  {offset:#05x} {:<16} {n}", map::name_of(*offset));
     }
     Ok(())
-}
-
-/// A number: `0x` + hex digits, or decimal.
-fn parse_number(text: &str) -> Option<u32> {
-    match text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
-        Some(hex) => u32::from_str_radix(hex, 16).ok(),
-        None => text.parse().ok(),
-    }
 }
 
 fn reg(register: &str, value: &str) -> Result<(), String> {

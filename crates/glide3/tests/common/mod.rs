@@ -62,7 +62,10 @@ fn num(s: &str) -> u32 {
 
 /// All `w`/`pci` operations of a glide-sdk trace, in order.
 pub fn trace(name: &str) -> Vec<Op> {
-    let path = format!("{}/../../traces/glide-sdk/traces/{name}.trace.gz", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../traces/glide-sdk/traces/{name}.trace.gz",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let mut text = String::new();
     GzDecoder::new(std::fs::File::open(&path).expect("trace file"))
         .read_to_string(&mut text)
@@ -86,12 +89,20 @@ pub fn assert_prefix(ours: &[Op], theirs: &[Op], what: &str) {
     let n = ours.len().min(theirs.len());
     let diffs: Vec<usize> = (0..n).filter(|&i| ours[i] != theirs[i]).collect();
     if let Some(&first) = diffs.first() {
-        let mut msg = format!("{what}: {} of {n} operations differ; first at #{first}\n", diffs.len());
+        let mut msg = format!(
+            "{what}: {} of {n} operations differ; first at #{first}\n",
+            diffs.len()
+        );
         for i in first.saturating_sub(3)..(first + 8).min(n) {
             let mark = if ours[i] != theirs[i] { "!" } else { " " };
             msg += &format!("{mark} #{i}: ours {}  trace {}\n", ours[i], theirs[i]);
         }
         panic!("{msg}");
     }
-    assert!(ours.len() <= theirs.len(), "{what}: we wrote {} ops, the trace has {}", ours.len(), theirs.len());
+    assert!(
+        ours.len() <= theirs.len(),
+        "{what}: we wrote {} ops, the trace has {}",
+        ours.len(),
+        theirs.len()
+    );
 }

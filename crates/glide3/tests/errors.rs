@@ -1,0 +1,87 @@
+//! Bad arguments reach the error callback with a message naming the call and leave
+//! the state (and the register stream) unchanged.
+
+mod common;
+use common::Rec;
+use glide3::consts::*;
+use glide3::{BoardInfo, Glide};
+use std::cell::RefCell;
+use std::rc::Rc;
+
+#[test]
+fn bad_arguments_are_reported_and_ignored() {
+    let rec = Rec::default();
+    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
+    assert!(g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ARGB,
+        GR_ORIGIN_UPPER_LEFT,
+        2,
+        1
+    ));
+    let seen = Rc::new(RefCell::new(Vec::<String>::new()));
+    let s2 = seen.clone();
+    g.set_error_callback(Box::new(move |m, _fatal| {
+        s2.borrow_mut().push(m.to_string())
+    }));
+    let before = g.get_state();
+    let writes = rec.0.borrow().len();
+    g.color_combine(
+        99,
+        GR_COMBINE_FACTOR_ONE,
+        GR_COMBINE_LOCAL_ITERATED,
+        GR_COMBINE_OTHER_ITERATED,
+        false,
+    );
+    g.depth_buffer_mode(17);
+    g.tex_clamp_mode(2, GR_TEXTURECLAMP_CLAMP, GR_TEXTURECLAMP_CLAMP);
+    g.vertex_layout(GR_PARAM_RGB, 3, GR_PARAM_ENABLE);
+    assert!(!g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ARGB,
+        GR_ORIGIN_UPPER_LEFT,
+        2,
+        1
+    ));
+    let msgs = seen.borrow().clone();
+    assert_eq!(msgs.len(), 5, "{msgs:?}");
+    assert!(msgs[0].starts_with("grColorCombine:"));
+    assert!(msgs[1].starts_with("grDepthBufferMode:"));
+    assert!(msgs[2].starts_with("grTexClampMode: invalid TMU 2"));
+    assert!(msgs[3].starts_with("grVertexLayout:"));
+    assert!(msgs[4].starts_with("grSstWinOpen:"));
+    // get_state validates, which writes nothing when nothing changed.
+    assert_eq!(g.get_state(), before);
+    assert_eq!(rec.0.borrow().len(), writes);
+}
+
+#[test]
+fn other_modes_open() {
+    for (res, w, h) in [
+        (GR_RESOLUTION_512x384, 512, 384),
+        (GR_RESOLUTION_640x400, 640, 400),
+        (GR_RESOLUTION_800x600, 800, 600),
+        (GR_RESOLUTION_856x480, 856, 480),
+        (GR_RESOLUTION_960x720, 960, 720),
+    ] {
+        let rec = Rec::default();
+        let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
+        assert!(g.win_open(
+            res,
+            GR_REFRESH_60Hz,
+            GR_COLORFORMAT_ARGB,
+            GR_ORIGIN_UPPER_LEFT,
+            2,
+            1
+        ));
+        assert_eq!(g.screen_size(), (w, h));
+        // videoDimensions carries (height << 16) | (width - 1).
+        let dims = (h << 16) | (w - 1);
+        assert!(
+            rec.0.borrow().contains(&common::Op::W(0x20c, dims)),
+            "{res:#x}"
+        );
+    }
+}
