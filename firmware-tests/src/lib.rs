@@ -223,8 +223,6 @@ pub mod bits {
 
     /// `fbzColorPath` (spec 5.16).
     pub mod color_path {
-        /// Bits 1:0 = 2: `c_other` is `color1`.
-        pub const RGB_COLOR1: u32 = 2;
         /// Bit 26: subpixel correction of the start parameters.
         pub const PARAM_ADJUST: u32 = 1 << 26;
     }

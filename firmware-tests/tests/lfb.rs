@@ -319,7 +319,6 @@ fn pipelined_write_uses_za_colour_and_clip() {
 /// frame buffer writes using formats 4 or 5"). MAME swaps regardless (`lfb_w`). A real
 /// board should read 0x9ae7.
 #[test]
-#[ignore = "emulator bug: lfbMode bit 11 word-swaps format 4/5 writes, spec 5.20 says never"]
 fn word_swap_ignored_for_32_bit_colour_formats() {
     let mut p = board(lfb::format(5) | lfb::WORD_SWAP_WRITES);
     p.write(lfb32(40, 9), 0xff9a_5c3e);

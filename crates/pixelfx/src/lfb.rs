@@ -13,6 +13,7 @@ use sst1_regs::{addr, ColorBuffer, LfbMode, LfbReadBuffer, Rgba};
 use crate::fbi::Fbi;
 use crate::iter::Iterated;
 use crate::pipeline::{DrawState, Source};
+use crate::profile::LfbWordSwap;
 use crate::stats::Kill;
 
 /// One pixel decoded from an LFB write.
@@ -144,7 +145,11 @@ impl Fbi {
         if mode.byte_swizzle_writes() {
             data = data.swap_bytes();
         }
-        if mode.word_swap_writes() {
+        // Spec 5.20: "bit(11) of lfbMode is ignored for linear frame buffer writes using
+        // formats 4 or 5" (the 32-bit colour formats).
+        let is_32bit_colour = matches!(mode.0 & 0xf, 4 | 5);
+        let swap_ignored = is_32bit_colour && self.profile().lfb_word_swap == LfbWordSwap::SpecIgnoredFor32Bit;
+        if mode.word_swap_writes() && !swap_ignored {
             data = data.rotate_left(16);
         }
         let Some((count, pixels)) = decode(mode, data) else {

@@ -44,6 +44,17 @@ pub enum PatternRow {
     Raster,
 }
 
+/// Whether `lfbMode` bit 11 (word swap on writes) applies to the 32-bit colour formats.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum LfbWordSwap {
+    /// Ignored for formats 4 and 5, as spec 5.20 says twice (86Box implements no word
+    /// swap at all, which agrees for these formats). No conformance trace exercises it.
+    #[default]
+    SpecIgnoredFor32Bit,
+    /// Swapped for every format (MAME, DOSBox Staging).
+    Always,
+}
+
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct PixelProfile {
@@ -52,6 +63,7 @@ pub struct PixelProfile {
     pub clip_right: ClipRightEdge,
     pub aux_write: AuxWrite,
     pub pattern_row: PatternRow,
+    pub lfb_word_swap: LfbWordSwap,
     pub dither_2x2: DitherMatrix2x2,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,

@@ -152,6 +152,23 @@ impl TextureCombine {
         }
     }
 
+    /// Whether both units output this TMU's own texel unchanged, before `invert_output`:
+    /// `zero_other` without `sub_clocal`, adding `c_local` (RGB) and `a_local` (alpha).
+    /// The multiply then has nothing to scale, whatever `mselect` and `reverse_blend` say.
+    ///
+    /// MAME reduces such a mode to a plain texel fetch and so drops `invert_output`;
+    /// 86Box fetches the texel alone for the same register pattern (its `TEXTUREMODE_LOCAL`).
+    pub const fn is_local_identity(&self) -> bool {
+        let rgb = &self.rgb;
+        let alpha = &self.alpha;
+        rgb.zero_other
+            && !rgb.sub_clocal
+            && matches!(rgb.add, AddLocal::CLocal)
+            && alpha.zero_other
+            && !alpha.sub_clocal
+            && matches!(alpha.add, AddLocal::ALocal)
+    }
+
     /// Combines `local` (this TMU's texel) with `other` (the upstream TMU's output).
     pub fn combine(&self, local: [u8; 4], other: [u8; 4], f: &Factors) -> [u8; 4] {
         let odd = self.trilinear && f.odd_lod;

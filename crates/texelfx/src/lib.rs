@@ -151,6 +151,24 @@ pub enum CoordRounding {
     TowardZero,
 }
 
+/// Whether `invert_output` applies when a TMU's combine passes its own texel through
+/// (`zero_other`, no `sub_clocal`, add `c_local` / `a_local` in both units: Glide's
+/// "decal" with the invert bits set, see
+/// [`sst1_chain::TextureCombine::is_local_identity`]).
+///
+/// MAME (which reduces the mode to a plain texel fetch) and 86Box (which fetches only the
+/// local texel for that register pattern) output the texel unchanged: the default. DOSBox
+/// Staging runs the full combine, so the invert bits apply, as the spec's diagram draws.
+/// On `tmu_combine` and `tmu2_combine` this decides whole cells.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum DecalInvert {
+    /// MAME and 86Box: the texel goes out unchanged.
+    #[default]
+    Ignored,
+    /// DOSBox Staging and the spec: the invert bits apply.
+    Applied,
+}
+
 /// Switches for behaviour on which the references disagree. `Default` is the majority of
 /// MAME, DOSBox Staging and 86Box, except `trilinear`, which follows the spec.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -171,6 +189,8 @@ pub struct TexelProfile {
     pub lod_zerofrac: LodZeroFrac,
     /// Rounding of texture coordinates to texels.
     pub coord_rounding: CoordRounding,
+    /// `invert_output` in the decal configuration.
+    pub decal_invert: DecalInvert,
 }
 
 /// One texture mapping unit: its registers, texture memory, NCC tables and palette.
@@ -404,9 +424,14 @@ impl Tmu {
             lod_fraction: smp.lod_fraction,
             odd_lod: self.profile.trilinear == Trilinear::Spec && smp.odd_lod,
         };
-        let [r, g, b, a] =
+        let [r, g, b, a] = if self.profile.decal_invert == DecalInvert::Ignored
+            && self.combine.is_local_identity()
+        {
+            smp.texel
+        } else {
             self.combine
-                .combine(smp.texel, [other.r, other.g, other.b, other.a], &factors);
+                .combine(smp.texel, [other.r, other.g, other.b, other.a], &factors)
+        };
         Rgba { r, g, b, a }
     }
 
