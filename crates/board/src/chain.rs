@@ -13,9 +13,11 @@ pub struct Chain<'a> {
 impl TexelSource for Chain<'_> {
     #[inline]
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
-        self.tmus
-            .iter_mut()
-            .rev()
-            .fold(Rgba::default(), |other, t| t.texel(dx, dy, x, y, other))
+        // Upstream first: the last TMU sees zero, each output feeds the next one down.
+        let mut other = Rgba::default();
+        for t in self.tmus.iter_mut().rev() {
+            other = t.texel(dx, dy, x, y, other);
+        }
+        other
     }
 }

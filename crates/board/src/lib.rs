@@ -118,6 +118,14 @@ impl Board {
         }
     }
 
+    /// Force the reference pixel path: every mode register is read at run time for every
+    /// pixel instead of using a walker specialised for the triangle's modes (see
+    /// `pixelfx::specialize`). Output and counters are identical either way; this is
+    /// for differential testing and debugging. Off by default.
+    pub fn set_reference(&mut self, reference: bool) {
+        self.fbi.set_reference(reference);
+    }
+
     /// Width and height of the video mode set by `videoDimensions`.
     pub fn display_size(&self) -> (u32, u32) {
         self.fbi.display_size()

@@ -10,8 +10,13 @@
 //!   `VOODOO_PNG_SWAPS=1,3` picks the swaps (1-based); without it every swap
 //!   overwrites the file. With more than one swap listed, `_swapN` is inserted
 //!   before the extension.
-//! * `VOODOO_TRACE=path`: record the whole run in the text trace format
-//!   (shared/docs/trace-text-format.md).
+//! * `VOODOO_TRACE=path`: record the whole run with `sst1_trace::Recorder` and write it
+//!   at `grGlideShutdown`: text format (shared/docs/trace-text-format.md), or the binary
+//!   form when the name ends in `.vtrace`; gzip-compressed when it ends in `.gz`. After
+//!   every buffer swap the trace gets a `dump front STEM_swapN_front.raw` point (STEM:
+//!   the file name up to its first dot), so `voodoo replay` reproduces each displayed
+//!   frame.
+//! * `VOODOO_FBI_MB`, `VOODOO_TMUS`, `VOODOO_TMU_MB`: the board (default 4, 1, 4).
 //!
 //! Headless: there is no window; the board is the only output.
 
@@ -23,10 +28,12 @@ use glide::consts::*;
 use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
 use sst1_board::{Board, BoardConfig, BufferKind};
 use sst1_regs::RegisterBus;
+use sst1_trace::{encode_binary, write_text, DumpBuffer, Recorder};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::io::Write;
+use std::path::PathBuf;
 use std::rc::Rc;
 
 /// `FxBool`.
@@ -34,27 +41,115 @@ pub type FxBool = c_int;
 /// `GrErrorCallbackFnc_t`.
 pub type ErrorFn = Option<unsafe extern "C" fn(*const c_char, FxBool)>;
 
-/// The bus Glide writes: the shared board, optionally tee'd into a trace file.
-struct Bus {
-    board: Rc<RefCell<Board>>,
-    trace: Option<Rc<RefCell<std::io::BufWriter<std::fs::File>>>>,
+/// The emulated board, shared by the Glide context (which writes it through the bus)
+/// and the C layer (which reads it for PNG output).
+#[derive(Clone)]
+struct SharedBoard(Rc<RefCell<Board>>);
+
+impl RegisterBus for SharedBoard {
+    fn write32(&mut self, addr: u32, value: u32) {
+        self.0.borrow_mut().write32(addr, value);
+    }
+    fn read32(&mut self, addr: u32) -> u32 {
+        self.0.borrow_mut().read32(addr)
+    }
+    fn pci_write(&mut self, offset: u32, value: u32) {
+        self.0.borrow_mut().pci_write(offset, value);
+    }
+}
+
+/// The `sst1_trace` recorder wrapping the board, shared so the C layer can add dump
+/// points and take the trace at shutdown.
+type SharedRecorder = Rc<RefCell<Recorder<SharedBoard>>>;
+
+/// The bus Glide writes: the board, or the recorder in front of it (`VOODOO_TRACE`).
+enum Bus {
+    Direct(SharedBoard),
+    Recorded(SharedRecorder),
 }
 
 impl RegisterBus for Bus {
     fn write32(&mut self, addr: u32, value: u32) {
-        if let Some(t) = &self.trace {
-            let _ = writeln!(t.borrow_mut(), "w {addr:#08x} {value:#010x}");
+        match self {
+            Bus::Direct(b) => b.write32(addr, value),
+            Bus::Recorded(r) => r.borrow_mut().write32(addr, value),
         }
-        self.board.borrow_mut().write32(addr, value);
     }
     fn read32(&mut self, addr: u32) -> u32 {
-        self.board.borrow_mut().read32(addr)
+        match self {
+            Bus::Direct(b) => b.read32(addr),
+            Bus::Recorded(r) => r.borrow_mut().read32(addr),
+        }
     }
     fn pci_write(&mut self, offset: u32, value: u32) {
-        if let Some(t) = &self.trace {
-            let _ = writeln!(t.borrow_mut(), "pci {offset:#04x} {value:#010x}");
+        match self {
+            Bus::Direct(b) => b.pci_write(offset, value),
+            Bus::Recorded(r) => r.borrow_mut().pci_write(offset, value),
         }
-        self.board.borrow_mut().pci_write(offset, value);
+    }
+}
+
+/// A run being recorded: the recorder, the output file and the stem of dump names.
+struct Recording {
+    recorder: SharedRecorder,
+    path: PathBuf,
+    stem: String,
+}
+
+impl Recording {
+    /// Starts recording when `VOODOO_TRACE` names a file.
+    fn from_env(board: &SharedBoard, cfg: BoardConfig) -> Option<Self> {
+        let path = PathBuf::from(std::env::var_os("VOODOO_TRACE")?);
+        let name = path.file_name()?.to_string_lossy().into_owned();
+        let stem: String = name
+            .split('.')
+            .next()
+            .unwrap_or("trace")
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        Some(Self {
+            recorder: Rc::new(RefCell::new(Recorder::new(board.clone(), cfg))),
+            path,
+            stem: if stem.is_empty() {
+                "trace".into()
+            } else {
+                stem
+            },
+        })
+    }
+
+    /// The dump name of the front buffer after swap `n` (1-based).
+    fn dump_name(stem: &str, n: u32) -> String {
+        format!("{stem}_swap{n}_front.raw")
+    }
+
+    /// Writes the trace: binary for `.vtrace`, text otherwise, gzip when the name ends
+    /// in `.gz` (the convention of `voodoo convert`).
+    fn write(&self) -> std::io::Result<()> {
+        let trace = self.recorder.borrow().trace().clone();
+        let name = self.path.to_string_lossy();
+        let (base, gzip) = match name.strip_suffix(".gz") {
+            Some(base) => (base, true),
+            None => (&*name, false),
+        };
+        let mut bytes = if base.ends_with(".vtrace") {
+            encode_binary(&trace)
+        } else {
+            write_text(&trace).into_bytes()
+        };
+        if gzip {
+            let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+            enc.write_all(&bytes)?;
+            bytes = enc.finish()?;
+        }
+        std::fs::write(&self.path, bytes)
     }
 }
 
@@ -68,8 +163,8 @@ struct LfbShadow {
 /// Everything one process's Glide session holds.
 struct Ctx {
     glide: Glide,
-    board: Rc<RefCell<Board>>,
-    trace: Option<Rc<RefCell<std::io::BufWriter<std::fs::File>>>>,
+    board: SharedBoard,
+    recording: Option<Recording>,
     states: HashMap<usize, GlideState>,
     layouts: HashMap<usize, VertexLayout>,
     lfb: [Option<LfbShadow>; 2],
@@ -99,21 +194,7 @@ fn board_config() -> BoardConfig {
         tmus: env("VOODOO_TMUS", 1),
         tmu_mb: env("VOODOO_TMU_MB", 4),
     }
-}
-
-fn open_trace(cfg: &BoardConfig) -> Option<Rc<RefCell<std::io::BufWriter<std::fs::File>>>> {
-    // HOOK: replace with sst1_trace::Recorder once that crate's recorder lands; this
-    // writes the same text format directly.
-    let path = std::env::var("VOODOO_TRACE").ok()?;
-    let f = std::fs::File::create(path).ok()?;
-    let mut w = std::io::BufWriter::new(f);
-    let _ = writeln!(w, "# Glide 3 (voodoo-rs glide3) register trace");
-    let _ = writeln!(
-        w,
-        "config fbi_mb {}\nconfig tmus {}\nconfig tmu_mb {}",
-        cfg.fbi_mb, cfg.tmus, cfg.tmu_mb
-    );
-    Some(Rc::new(RefCell::new(w)))
+    .sanitized()
 }
 
 fn png_setting() -> Option<(String, Option<Vec<u32>>)> {
@@ -142,11 +223,16 @@ fn save_png(board: &Board, path: &str) {
 
 fn after_swap(ctx: &mut Ctx) {
     let n = ctx.glide.swap_count();
+    if let Some(r) = &ctx.recording {
+        r.recorder
+            .borrow_mut()
+            .dump(DumpBuffer::Front, &Recording::dump_name(&r.stem, n));
+    }
     let Some((path, swaps)) = ctx.png.clone() else {
         return;
     };
     match swaps {
-        None => save_png(&ctx.board.borrow(), &path),
+        None => save_png(&ctx.board.0.borrow(), &path),
         Some(list) if list.contains(&n) => {
             let out = if list.len() > 1 {
                 match path.rfind('.') {
@@ -156,7 +242,7 @@ fn after_swap(ctx: &mut Ctx) {
             } else {
                 path
             };
-            save_png(&ctx.board.borrow(), &out);
+            save_png(&ctx.board.0.borrow(), &out);
         }
         Some(_) => {}
     }
@@ -205,11 +291,11 @@ pub extern "C" fn grGlideInit() {
             return;
         }
         let cfg = board_config();
-        let board = Rc::new(RefCell::new(Board::new(cfg)));
-        let trace = open_trace(&cfg);
-        let bus = Bus {
-            board: board.clone(),
-            trace: trace.clone(),
+        let board = SharedBoard(Rc::new(RefCell::new(Board::new(cfg))));
+        let recording = Recording::from_env(&board, cfg);
+        let bus = match &recording {
+            Some(r) => Bus::Recorded(r.recorder.clone()),
+            None => Bus::Direct(board.clone()),
         };
         let glide = Glide::init(
             Box::new(bus),
@@ -218,7 +304,7 @@ pub extern "C" fn grGlideInit() {
         *c.borrow_mut() = Some(Ctx {
             glide,
             board,
-            trace,
+            recording,
             states: HashMap::new(),
             layouts: HashMap::new(),
             lfb: [None, None],
@@ -232,10 +318,12 @@ pub extern "C" fn grGlideInit() {
 pub extern "C" fn grGlideShutdown() {
     CTX.with(|c| {
         if let Some(ctx) = c.borrow_mut().take() {
-            if let Some(t) = &ctx.trace {
-                let _ = t.borrow_mut().flush();
-            }
             drop(ctx.glide.shutdown());
+            if let Some(r) = &ctx.recording {
+                if let Err(e) = r.write() {
+                    eprintln!("glide3: cannot write {}: {e}", r.path.display());
+                }
+            }
         }
     });
 }
@@ -533,9 +621,24 @@ pub extern "C" fn grGlideSetVertexLayout(layout: *const c_void) {
 
 // ----- drawing ----------------------------------------------------------------------
 
+/// Reports a null vertex pointer (3dfx: "NULL pointer passed"); true if one is null.
+fn null_vertex(call: &str, ptrs: &[*const c_void]) -> bool {
+    let bad = ptrs.iter().any(|p| p.is_null());
+    if bad {
+        with(|c| {
+            c.glide
+                .report_error(&format!("{call}: NULL pointer passed"))
+        });
+    }
+    bad
+}
+
 /// `grDrawPoint`.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawPoint(p: *const c_void) {
+    if null_vertex("grDrawPoint", &[p]) {
+        return;
+    }
     with(|c| {
         let l = c.glide.get_vertex_layout();
         // SAFETY: Glide vertex pointer.
@@ -547,6 +650,9 @@ pub unsafe extern "C" fn grDrawPoint(p: *const c_void) {
 /// `grDrawLine`.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawLine(a: *const c_void, b: *const c_void) {
+    if null_vertex("grDrawLine", &[a, b]) {
+        return;
+    }
     with(|c| {
         let l = c.glide.get_vertex_layout();
         // SAFETY: Glide vertex pointers.
@@ -558,6 +664,9 @@ pub unsafe extern "C" fn grDrawLine(a: *const c_void, b: *const c_void) {
 /// `grDrawTriangle`.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawTriangle(a: *const c_void, b: *const c_void, cc: *const c_void) {
+    if null_vertex("grDrawTriangle", &[a, b, cc]) {
+        return;
+    }
     with(|c| {
         let l = c.glide.get_vertex_layout();
         // SAFETY: Glide vertex pointers.
@@ -566,32 +675,44 @@ pub unsafe extern "C" fn grDrawTriangle(a: *const c_void, b: *const c_void, cc: 
     });
 }
 
-/// `grAADrawTriangle` (edges not antialiased; see the glide3 crate).
+/// `grAADrawTriangle`: the triangle with alpha-blended edge triangles on the edges
+/// whose flag is set.
 #[no_mangle]
 pub unsafe extern "C" fn grAADrawTriangle(
     a: *const c_void,
     b: *const c_void,
     cc: *const c_void,
-    _ab: FxBool,
-    _bc: FxBool,
-    _ca: FxBool,
+    ab: FxBool,
+    bc: FxBool,
+    ca: FxBool,
 ) {
-    // SAFETY: forwarded Glide vertex pointers.
-    unsafe { grDrawTriangle(a, b, cc) };
+    if null_vertex("grAADrawTriangle", &[a, b, cc]) {
+        return;
+    }
+    with(|c| {
+        let l = c.glide.get_vertex_layout();
+        // SAFETY: Glide vertex pointers (checked non-null).
+        let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
+        c.glide
+            .aa_draw_triangle(&a, &b, &cc, ab != 0, bc != 0, ca != 0);
+    });
 }
 
 /// `grDrawVertexArray`: `pointers` is an array of `count` vertex pointers.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawVertexArray(mode: u32, count: u32, pointers: *const *const c_void) {
-    if pointers.is_null() {
+    if null_vertex("grDrawVertexArray", &[pointers as *const c_void]) {
+        return;
+    }
+    // SAFETY: `count` vertex pointers.
+    let list = unsafe { std::slice::from_raw_parts(pointers, count as usize) };
+    if null_vertex("grDrawVertexArray", list) {
         return;
     }
     with(|c| {
         let l = c.glide.get_vertex_layout();
-        // SAFETY: `count` valid vertex pointers.
-        let verts: Vec<Vec<f32>> = (0..count as usize)
-            .map(|i| unsafe { vertex(&l, *pointers.add(i)) })
-            .collect();
+        // SAFETY: non-null Glide vertex pointers.
+        let verts: Vec<Vec<f32>> = list.iter().map(|&p| unsafe { vertex(&l, p) }).collect();
         let refs: Vec<&[f32]> = verts.iter().map(Vec::as_slice).collect();
         c.glide.draw_vertex_array(mode, &refs);
     });
@@ -605,7 +726,7 @@ pub unsafe extern "C" fn grDrawVertexArrayContiguous(
     data: *const c_void,
     stride: u32,
 ) {
-    if data.is_null() {
+    if null_vertex("grDrawVertexArrayContiguous", &[data]) {
         return;
     }
     with(|c| {

@@ -1,10 +1,19 @@
-//! Build the C example programs in `examples/` against `include/` and libglide3,
-//! run them headless with `VOODOO_PNG`, and check they exit 0 and write a 640x480
-//! PNG of the front buffer.
+//! Build the C example programs in `examples/` against `include/` and libglide3, run
+//! them headless with `VOODOO_PNG` and `VOODOO_TRACE`, then:
 //!
-//! UNVERIFIED (later): once the board's output is blessed, assert exact pixel hashes
-//! of the decoded PNGs here (the board was a stub when these tests were written).
+//! * replay the recorded trace with `sst1_trace::execute` on a fresh board: every
+//!   displayed frame it dumps must equal our golden (`traces/examples/golden/`), and
+//!   the last one must equal the PNG the run wrote, pixel for pixel;
+//! * the committed trace `traces/examples/NAME.trace.gz` must be the op stream this run
+//!   recorded (a change of the front-end's register stream shows up here).
+//!
+//! The goldens are our own regression references (traces/examples/README.md). After an
+//! intended change, `VOODOO_BLESS=1 cargo test -p glide3-c --test c_examples` rewrites
+//! the committed trace and goldens of the C examples.
 
+use sst1_board::Board;
+use sst1_trace::{execute, load_trace, rgb565_to_rgb8, Dump, Trace};
+use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -21,10 +30,28 @@ fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-fn build_and_run(name: &str) -> PathBuf {
-    let out = std::env::temp_dir().join(format!("glide3-c-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&out).expect("temp dir");
-    let exe = out.join(name);
+fn examples_dir() -> PathBuf {
+    repo().join("traces/examples")
+}
+
+fn blessing() -> bool {
+    std::env::var_os("VOODOO_BLESS").is_some()
+}
+
+/// What one run of an example left behind.
+struct Run {
+    png: PathBuf,
+    trace: PathBuf,
+    stderr: String,
+}
+
+/// Compiles `examples/NAME.c` (or `crates/glide3-c/tests/NAME.c` for `tests/NAME`).
+fn build(name: &str, out: &Path) -> PathBuf {
+    let source = match name.strip_prefix("tests/") {
+        Some(test) => repo().join(format!("crates/glide3-c/tests/{test}.c")),
+        None => repo().join(format!("examples/{name}.c")),
+    };
+    let exe = out.join(name.replace('/', "_"));
     let lib = lib_dir();
     assert!(
         lib.join("libglide3.so").exists(),
@@ -34,20 +61,29 @@ fn build_and_run(name: &str) -> PathBuf {
     let status = Command::new("cc")
         .args(["-std=gnu17", "-Wall", "-Wextra", "-Werror", "-I"])
         .arg(repo().join("crates/glide3-c/include"))
-        .arg(repo().join(format!("examples/{name}.c")))
+        .arg(&source)
         .arg("-L")
         .arg(&lib)
         .arg("-lglide3")
+        .arg("-lm")
         .arg("-o")
         .arg(&exe)
         .status()
         .expect("run cc");
     assert!(status.success(), "compiling {name}.c failed");
+    exe
+}
+
+fn build_and_run(name: &str) -> Run {
+    let out = std::env::temp_dir().join(format!("glide3-c-test-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&out).expect("temp dir");
+    let exe = build(name, &out);
     let png = out.join(format!("{name}.png"));
+    let trace = out.join(format!("{name}.trace.gz"));
     let run = Command::new(&exe)
-        .env("LD_LIBRARY_PATH", &lib)
+        .env("LD_LIBRARY_PATH", lib_dir())
         .env("VOODOO_PNG", &png)
-        .env("VOODOO_TRACE", out.join(format!("{name}.trace")))
+        .env("VOODOO_TRACE", &trace)
         .output()
         .expect("run example");
     assert!(
@@ -56,43 +92,126 @@ fn build_and_run(name: &str) -> PathBuf {
         run.status,
         String::from_utf8_lossy(&run.stderr)
     );
-    png
+    Run {
+        png,
+        trace,
+        stderr: String::from_utf8_lossy(&run.stdout).into_owned()
+            + &String::from_utf8_lossy(&run.stderr),
+    }
 }
 
-fn assert_png_640x480(png: &Path) {
-    let img = image::open(png).expect("decode PNG");
-    assert_eq!((img.width(), img.height()), (640, 480), "{}", png.display());
+fn replay(trace: &Trace) -> Vec<Dump> {
+    let mut board = Board::new(trace.board_config());
+    execute(&trace.ops, &mut board, |_| {})
+}
+
+fn gunzip(path: &Path) -> Vec<u8> {
+    let mut out = Vec::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(path).expect("golden file"))
+        .read_to_end(&mut out)
+        .expect("gzip");
+    out
+}
+
+fn gzip(bytes: &[u8]) -> Vec<u8> {
+    let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+    enc.write_all(bytes).expect("gzip");
+    enc.finish().expect("gzip")
+}
+
+/// Every dump equals its golden; the last one equals the PNG. Returns the dumps.
+fn check(name: &str) -> Vec<Dump> {
+    let run = build_and_run(name);
+    let trace = load_trace(&run.trace).expect("recorded trace loads");
+    let dumps = replay(&trace);
+    assert!(!dumps.is_empty(), "{name}: the trace has no dump points");
+
+    // Step 1: the replay reproduces what the run displayed.
+    let img = image::open(&run.png).expect("decode PNG").to_rgb8();
+    let last = dumps.last().expect("a dump");
+    assert_eq!((img.width(), img.height()), (last.width, last.height));
+    let replayed: Vec<u8> = last.data.iter().flat_map(|&p| rgb565_to_rgb8(p)).collect();
+    assert!(
+        replayed == img.as_raw().as_slice(),
+        "{name}: replayed front buffer differs from the PNG the run wrote"
+    );
+
+    let committed = examples_dir().join(format!("{name}.trace.gz"));
+    if blessing() {
+        std::fs::copy(&run.trace, &committed).expect("bless trace");
+        for d in &dumps {
+            let golden = examples_dir().join(format!("golden/{}.gz", d.file));
+            std::fs::write(golden, gzip(&d.to_le_bytes())).expect("bless golden");
+        }
+        return dumps;
+    }
+    // Step 2: exact pixels against our goldens, and the same register stream.
+    for d in &dumps {
+        let golden = gunzip(&examples_dir().join(format!("golden/{}.gz", d.file)));
+        assert!(
+            d.to_le_bytes() == golden,
+            "{name}: {} differs from its golden",
+            d.file
+        );
+    }
+    let ours = load_trace(&committed).expect("committed trace");
+    assert!(
+        ours == trace,
+        "{name}: the recorded register stream differs from traces/examples/{name}.trace.gz"
+    );
+    assert!(
+        run.stderr.is_empty(),
+        "{name} printed errors: {}",
+        run.stderr
+    );
+    dumps
 }
 
 #[test]
 fn gouraud_triangle() {
-    let png = build_and_run("gouraud");
-    assert_png_640x480(&png);
-    // The trace must start with the init sequence and contain the triangle command.
-    let trace = std::fs::read_to_string(png.with_extension("trace")).expect("trace");
-    assert!(trace.starts_with("# Glide 3"));
-    assert!(
-        trace
-            .lines()
-            .any(|l| l.starts_with("w 0x000100 0x478a0000")),
-        "test04-like area 70656"
-    );
-    assert_eq!(
-        trace
-            .lines()
-            .filter(|l| l.starts_with("w 0x000128"))
-            .count(),
-        2,
-        "two swaps"
-    );
+    let dumps = check("gouraud");
+    // Two frames, identical; a swap dump each.
+    assert_eq!(dumps.len(), 2);
+    assert_eq!(dumps[0].file, "gouraud_swap1_front.raw");
+    assert_eq!(dumps[0].data, dumps[1].data);
 }
 
 #[test]
 fn textured_fog() {
-    assert_png_640x480(&build_and_run("textured_fog"));
+    check("textured_fog");
 }
 
 #[test]
 fn decal_blend() {
-    assert_png_640x480(&build_and_run("decal_blend"));
+    check("decal_blend");
+}
+
+#[test]
+fn lightmap_multipass() {
+    check("lightmap");
+}
+
+#[test]
+fn lfb_overlay() {
+    check("lfb_overlay");
+}
+
+/// Null vertex pointers, an out-of-range enum and a texture that does not fit reach the
+/// error callback with the call's name and leave the counters untouched.
+#[test]
+fn hostile_arguments_reach_the_error_callback() {
+    let out = std::env::temp_dir().join(format!("glide3-c-test-{}-hostile", std::process::id()));
+    std::fs::create_dir_all(&out).expect("temp dir");
+    let exe = build("tests/hostile", &out);
+    let run = Command::new(&exe)
+        .env("LD_LIBRARY_PATH", lib_dir())
+        .output()
+        .expect("run hostile");
+    assert_eq!(
+        String::from_utf8_lossy(&run.stdout),
+        "ok\n",
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(run.status.success());
 }

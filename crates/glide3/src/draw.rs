@@ -17,6 +17,7 @@
 //! SST-1 Glide 3 gxdraw.c `_trisetup` (read for the operation order); verified bit for
 //! bit against the test04 trace (tests/trisetup_trace.rs).
 
+use crate::aa::{AA_LINES, AA_POINTS, AA_TRIANGLES};
 use crate::consts::*;
 use crate::hw::bits::*;
 use crate::hw::{tmu_chip, PACKER_FIX};
@@ -108,7 +109,7 @@ pub(crate) fn fetch(v: &[f32], off: i32) -> f32 {
 }
 
 /// Read byte `off` of a vertex as a float (0.0 outside it).
-fn fetch_byte(v: &[f32], off: i32) -> f32 {
+pub(crate) fn fetch_byte(v: &[f32], off: i32) -> f32 {
     let Ok(o) = usize::try_from(off) else {
         return 0.0;
     };
@@ -116,7 +117,7 @@ fn fetch_byte(v: &[f32], off: i32) -> f32 {
         .map_or(0.0, |w| f32::from(w.to_bits().to_le_bytes()[o % 4]))
 }
 
-fn value(v: &[f32], e: Entry) -> f32 {
+pub(crate) fn value(v: &[f32], e: Entry) -> f32 {
     match e {
         Entry::Float { off, .. } => fetch(v, off),
         Entry::Byte { off, .. } => fetch_byte(v, off),
@@ -366,7 +367,7 @@ impl crate::Glide {
         self.data_list = d;
     }
 
-    fn send_start(&mut self, e: Entry, v: f32) -> Option<u32> {
+    pub(crate) fn send_start(&mut self, e: Entry, v: f32) -> Option<u32> {
         match e {
             Entry::Packer => {
                 self.hw.wf(PACKER_FIX, 0.0);
@@ -488,7 +489,7 @@ impl crate::Glide {
 
     /// Project one clip-coordinate vertex to window coordinates, in a copy of the
     /// vertex laid out as the window-coordinate path expects.
-    fn project(&self, v: &[f32]) -> Vec<f32> {
+    pub(crate) fn project(&self, v: &[f32]) -> Vec<f32> {
         let l = &self.layout;
         let vp = self.st.viewport;
         let oow = 1.0 / fetch(v, l.w.offset);
@@ -553,6 +554,10 @@ impl crate::Glide {
             self.project(v)
         };
         let v = v.as_slice();
+        if self.st.smooth_mode & AA_POINTS != 0 {
+            self.aa_point(v);
+            return;
+        }
         let xo = self.layout.xy.offset;
         // Adding 3 * 2^22 - 0.5 truncates to an integer (round-to-nearest on x - 0.5).
         let bias = (3u32 << 22) as f32 - 0.5;
@@ -591,6 +596,10 @@ impl crate::Glide {
             pb = self.project(b);
             (pa.as_slice(), pb.as_slice())
         };
+        if self.st.smooth_mode & AA_LINES != 0 {
+            self.aa_line(a, b);
+            return;
+        }
         let xo = self.layout.xy.offset;
         let (mut a, mut b) = (a, b);
         let mut xa = fetch(a, xo) + SNAP_BIAS;
@@ -665,8 +674,20 @@ impl crate::Glide {
             GR_POINTS => v.iter().for_each(|p| self.point(p)),
             GR_LINE_STRIP => (1..n).for_each(|i| self.line(v[i - 1], v[i])),
             GR_LINES => (0..n / 2).for_each(|i| self.line(v[2 * i], v[2 * i + 1])),
+            GR_TRIANGLES if self.st.smooth_mode & AA_TRIANGLES != 0 => (0..n / 3)
+                .for_each(|i| self.aa_triangle(v[3 * i], v[3 * i + 1], v[3 * i + 2], [true; 3])),
             GR_TRIANGLES => {
                 (0..n / 3).for_each(|i| self.triangle(v[3 * i], v[3 * i + 1], v[3 * i + 2]))
+            }
+            // Antialiased polygons: the fan with only the perimeter edges antialiased.
+            // Source: 3dfx's Glide 3 for the Voodoo 2 (cvg, `_grAADrawVertexList`)
+            // antialiases polygon outlines; UNVERIFIED for the SST-1 port, whose
+            // grDrawVertexArray leaves strips, fans and polygons aliased.
+            GR_POLYGON if self.st.smooth_mode & AA_TRIANGLES != 0 => {
+                for i in 1..n.saturating_sub(1) {
+                    let edges = [i == 1, true, i + 2 == n];
+                    self.aa_triangle(v[0], v[i], v[i + 1], edges);
+                }
             }
             GR_TRIANGLE_STRIP | GR_TRIANGLE_STRIP_CONTINUE => {
                 let continuing = mode == GR_TRIANGLE_STRIP_CONTINUE && self.strip_tail.is_some();
@@ -715,6 +736,18 @@ impl crate::Glide {
                 }
             }
             _ => {}
+        }
+    }
+
+    /// An antialiased triangle in the current coordinate space; `edges` says which of
+    /// a-b, b-c, c-a get antialiased.
+    pub(crate) fn aa_triangle(&mut self, a: &[f32], b: &[f32], c: &[f32], edges: [bool; 3]) {
+        self.stats.triangles_in += 1;
+        if self.st.coordinate_space == GR_WINDOW_COORDS {
+            self.aa_triangle_window(a, b, c, edges);
+        } else {
+            let (a, b, c) = (self.project(a), self.project(b), self.project(c));
+            self.aa_triangle_window(&a, &b, &c, edges);
         }
     }
 }

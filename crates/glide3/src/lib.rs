@@ -20,6 +20,7 @@
 // `GR_REFRESH_60Hz`); we keep its spelling so they match the C headers and the guide.
 #![allow(non_upper_case_globals)]
 
+mod aa;
 pub mod consts;
 pub mod draw;
 pub mod get;
@@ -870,10 +871,19 @@ impl Glide {
         self.draw_list(mode, &verts);
     }
 
-    /// `grAADrawTriangle`. UNVERIFIED: drawn without the antialiased edges (the
-    /// edge-blending passes of 3dfx's gaa.c are not reproduced).
-    pub fn aa_draw_triangle(&mut self, a: &[f32], b: &[f32], c: &[f32]) {
-        self.triangle(a, b, c);
+    /// `grAADrawTriangle`: the triangle plus alpha-ramped edge triangles outside the
+    /// edges whose flag is set (a-b, b-c, c-a); see the `aa` module. Needs an
+    /// iterated-alpha combine and source-alpha blending to look antialiased.
+    pub fn aa_draw_triangle(
+        &mut self,
+        a: &[f32],
+        b: &[f32],
+        c: &[f32],
+        ab_antialias: bool,
+        bc_antialias: bool,
+        ca_antialias: bool,
+    ) {
+        self.aa_triangle(a, b, c, [ab_antialias, bc_antialias, ca_antialias]);
     }
 
     // ----- buffers ------------------------------------------------------------------

@@ -4,7 +4,7 @@
 use sst1_regs::AlphaFunction;
 
 /// `true` if the pixel passes the alpha test.
-#[inline]
+#[inline(always)]
 pub fn test(func: AlphaFunction, alpha: u8, reference: u8) -> bool {
     match func {
         AlphaFunction::Never => false,

@@ -100,6 +100,7 @@ pub struct BlendInput {
 
 /// Scale of the blend factors: `(one, plus)`: a factor `x` is `x + plus`, `1 - x` is
 /// `one - x`.
+#[inline(always)]
 fn scale(arithmetic: BlendArithmetic) -> (i32, i32) {
     match arithmetic {
         BlendArithmetic::Mame | BlendArithmetic::Dosbox => (256, 1),
@@ -110,6 +111,7 @@ fn scale(arithmetic: BlendArithmetic) -> (i32, i32) {
 /// One channel's blend factor. `other` is the colour `A_COLOR` refers to (the destination
 /// for a source factor, the source for a destination factor); `fifteen` is the value of
 /// code 0xf (ASATURATE's min, or the pre-fog colour), before `plus` is added.
+#[inline(always)]
 fn factor(
     code: BlendFactor,
     sa: i32,
@@ -133,6 +135,7 @@ fn factor(
 }
 
 /// The destination colour widened to 8 bits per channel.
+#[inline(always)]
 fn widen(p: u16, replicate: bool) -> [i32; 3] {
     let p = p as i32;
     let (r, g, b) = ((p >> 8) & 0xf8, (p >> 3) & 0xfc, (p << 3) & 0xf8);
@@ -144,6 +147,7 @@ fn widen(p: u16, replicate: bool) -> [i32; 3] {
 }
 
 /// 86Box's dither subtraction for one widened channel (see [`BlendArithmetic`]).
+#[inline(always)]
 fn dither_sub_86box(v: i32, offset: i32, floor: i32) -> i32 {
     if v < floor {
         0
@@ -155,6 +159,7 @@ fn dither_sub_86box(v: i32, offset: i32, floor: i32) -> i32 {
 /// Blends `input.src` into the destination as `alpha_mode` says. With blending disabled
 /// (`alphaMode` bit 4 clear) the source is returned unchanged. `fbz_mode` supplies alpha
 /// planes (bit 18), dithering (bit 8) and dither subtraction (bit 19).
+#[inline(always)]
 pub fn alpha_blend(
     alpha_mode: AlphaMode,
     fbz_mode: FbzMode,
@@ -208,7 +213,7 @@ pub fn alpha_blend(
     let src_code = alpha_mode.src_rgb_blend();
     let dst_code = alpha_mode.dst_rgb_blend();
 
-    let rgb: [i32; 3] = core::array::from_fn(|i| {
+    let rgb: [i32; 3] = crate::specialize::per_channel(|i| {
         let fs = factor(src_code, sa, da, d[i], saturate, sc);
         let fd = factor(dst_code, sa, da, s[i], pf[i], sc);
         // The colour the source factor scales (86Box: the destination for ASATURATE).

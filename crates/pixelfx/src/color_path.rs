@@ -29,7 +29,7 @@ pub struct Inputs {
 }
 
 /// `c_other` / `a_other` (spec 5.16 bits 1:0 and 3:2). Reserved selections give zero.
-#[inline]
+#[inline(always)]
 pub fn select_other(cp: FbzColorPath, i: &Inputs) -> Rgba {
     let rgb = match cp.cc_rgbselect() {
         RgbSelect::IteratedRgb => i.iterated,
@@ -47,7 +47,7 @@ pub fn select_other(cp: FbzColorPath, i: &Inputs) -> Rgba {
 }
 
 /// `c_local` / `a_local` (spec 5.16 bits 4, 6:5, 7).
-#[inline]
+#[inline(always)]
 pub fn select_local(cp: FbzColorPath, i: &Inputs) -> Rgba {
     // localselect_override: texture alpha bit 7 chooses color0 instead of iterated.
     let use_color0 = if cp.cc_localselect_override() {
@@ -67,13 +67,13 @@ pub fn select_local(cp: FbzColorPath, i: &Inputs) -> Rgba {
 }
 
 /// Chroma-key test on the selected `c_other` (spec 5.27): `true` if the pixel is killed.
-#[inline]
+#[inline(always)]
 pub fn chroma_killed(other: Rgba, chroma_key: u32) -> bool {
     (other.to_argb() ^ chroma_key) & 0x00ff_ffff == 0
 }
 
 /// The colour and alpha combine arithmetic. Returns the combined ARGB, each 0..=255.
-#[inline]
+#[inline(always)]
 pub fn combine(cp: FbzColorPath, other: Rgba, local: Rgba, texel_alpha: u8) -> Rgba {
     let o = [other.r as i32, other.g as i32, other.b as i32];
     let l = [local.r as i32, local.g as i32, local.b as i32];

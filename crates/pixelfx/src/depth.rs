@@ -10,7 +10,7 @@
 use sst1_regs::DepthFunction;
 
 /// The 16-bit depth value of a pixel (before the test).
-#[inline]
+#[inline(always)]
 pub fn value(wbuffer: bool, z16: u16, wfloat: u16, bias: Option<u16>) -> i32 {
     let v = if wbuffer { wfloat as i32 } else { z16 as i32 };
     match bias {
@@ -20,7 +20,7 @@ pub fn value(wbuffer: bool, z16: u16, wfloat: u16, bias: Option<u16>) -> i32 {
 }
 
 /// The depth comparison: `true` if the pixel passes.
-#[inline]
+#[inline(always)]
 pub fn test(func: DepthFunction, source: i32, dest: u16) -> bool {
     let d = dest as i32;
     match func {

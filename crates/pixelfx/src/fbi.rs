@@ -45,6 +45,8 @@ pub struct Fbi {
     pub(crate) dither: Dither,
     /// Toggled on each status read so that drivers waiting for retrace make progress.
     vretrace: bool,
+    /// Force the reference (unspecialised) triangle walker; see [`Fbi::set_reference`].
+    pub(crate) reference: bool,
 }
 
 impl Fbi {
@@ -60,6 +62,7 @@ impl Fbi {
             dither: Dither::new(profile.dither_2x2),
             profile,
             vretrace: false,
+            reference: false,
         }
     }
 

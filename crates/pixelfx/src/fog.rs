@@ -117,6 +117,7 @@ pub struct FogInput {
 /// 16-bit integer part wraps to its low byte, except 0xffff (-1) reads 0 and 0x100
 /// reads 0xff. Source: MAME `clamped_w`, DOSBox Staging `CLAMPED_W` (non-clamp branch).
 /// 86Box takes the low byte without the two exceptions.
+#[inline(always)]
 fn pseudo_clamped_w(w: i64) -> i32 {
     match (w >> 32) & 0xffff {
         0xffff => 0,
@@ -126,6 +127,7 @@ fn pseudo_clamped_w(w: i64) -> i32 {
 }
 
 /// The fog alpha `Afog` (0..=318; above 255 only with an out-of-spec fog table).
+#[inline(always)]
 fn fog_alpha(mode: FogMode, table: &FogTable, input: &FogInput, profile: FogProfile) -> i32 {
     match mode.fog_za() {
         FogZa::FogTable => {
@@ -153,6 +155,7 @@ fn fog_alpha(mode: FogMode, table: &FogTable, input: &FogInput, profile: FogProf
 
 /// Applies `fogMode` to one pixel. With fog disabled (bit 0 clear) the colour is
 /// returned unchanged. `fog_color` is the `fogColor` register (its alpha is unused).
+#[inline(always)]
 pub fn apply_fog(
     mode: FogMode,
     fog_color: Rgba,
@@ -171,10 +174,10 @@ pub fn apply_fog(
     let out: [i32; 3] = if mode.fog_constant() {
         // Constant fog bypasses the multiplier (spec 5.17: bit 5 overrides bits 4:3).
         let add = add_back || profile.constant_mult == FogConstantMult::AddToColor;
-        core::array::from_fn(|i| if add { cin[i] + fog[i] } else { fog[i] })
+        crate::specialize::per_channel(|i| if add { cin[i] + fog[i] } else { fog[i] })
     } else {
         let factor = fog_alpha(mode, table, input, profile) + 1;
-        core::array::from_fn(|i| {
+        crate::specialize::per_channel(|i| {
             let f = if mode.fog_add() { 0 } else { fog[i] };
             let f = if add_back { f - cin[i] } else { f };
             // Arithmetic shift: floor, as in all three references.

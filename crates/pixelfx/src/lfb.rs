@@ -148,7 +148,8 @@ impl Fbi {
         // Spec 5.20: "bit(11) of lfbMode is ignored for linear frame buffer writes using
         // formats 4 or 5" (the 32-bit colour formats).
         let is_32bit_colour = matches!(mode.0 & 0xf, 4 | 5);
-        let swap_ignored = is_32bit_colour && self.profile().lfb_word_swap == LfbWordSwap::SpecIgnoredFor32Bit;
+        let swap_ignored =
+            is_32bit_colour && self.profile().lfb_word_swap == LfbWordSwap::SpecIgnoredFor32Bit;
         if mode.word_swap_writes() && !swap_ignored {
             data = data.rotate_left(16);
         }

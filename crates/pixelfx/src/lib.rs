@@ -19,6 +19,7 @@ pub mod pipeline;
 pub mod profile;
 pub mod raster;
 pub mod setup;
+pub mod specialize;
 pub mod stats;
 pub mod stipple;
 

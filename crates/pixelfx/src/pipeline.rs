@@ -19,6 +19,7 @@ use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
 use crate::iter::{clamp_colour, clamp_z, wfloat, Iterated};
 use crate::profile::{AuxWrite, ClipRightEdge};
+use crate::specialize::{known, known_alpha_mode, LIVE};
 use crate::stats::Kill;
 use crate::{alpha_test, blend, depth, fog, stipple};
 
@@ -105,11 +106,8 @@ pub enum Source {
 }
 
 impl Fbi {
-    /// Run one pixel through the pipeline. `x` is the screen column, `y` the raster row
-    /// (used for dithering), `scry` the frame-buffer row after the Y-origin flip.
-    /// `texel` is called only if the pixel survives the depth test and texturing is on.
-    /// `prow` is the row the dither and stipple patterns are indexed with (see
-    /// [`crate::profile::PatternRow`]).
+    /// Run one pixel through the pipeline, reading every mode register at run time (the
+    /// reference path). See [`Fbi::shade`] for the arguments.
     #[inline]
     pub(crate) fn shade_pixel(
         &mut self,
@@ -122,7 +120,36 @@ impl Fbi {
         stipple_state: &mut u32,
         texel: impl FnOnce() -> Rgba,
     ) -> Result<(), Kill> {
-        let mode = st.mode;
+        self.shade::<LIVE, LIVE, LIVE, LIVE>(st, x, prow, scry, it, source, stipple_state, texel)
+    }
+
+    /// Run one pixel through the pipeline. `x` is the screen column, `y` the raster row
+    /// (used for dithering), `scry` the frame-buffer row after the Y-origin flip.
+    /// `texel` is called only if the pixel survives the depth test and texturing is on.
+    /// `prow` is the row the dither and stipple patterns are indexed with (see
+    /// [`crate::profile::PatternRow`]).
+    ///
+    /// `CP`, `AM`, `FM` and `ZM` are the values of `fbzColorPath`, `alphaMode`, `fogMode`
+    /// and `fbzMode` known at compile time, or [`LIVE`] to read them from `st` (see
+    /// [`crate::specialize`]; the caller guarantees that a known value equals `st`'s).
+    /// The stages are the same code either way: a known value only lets the compiler
+    /// fold the bit tests and drop the stages that are off.
+    #[inline(always)]
+    pub(crate) fn shade<const CP: u32, const AM: u32, const FM: u32, const ZM: u32>(
+        &mut self,
+        st: &DrawState,
+        x: i32,
+        prow: i32,
+        scry: i32,
+        it: &Iterated,
+        source: Source,
+        stipple_state: &mut u32,
+        texel: impl FnOnce() -> Rgba,
+    ) -> Result<(), Kill> {
+        let mode = FbzMode(known(ZM, st.mode.0));
+        let color_path = FbzColorPath(known(CP, st.color_path.0));
+        let am = AlphaMode(known_alpha_mode(AM, st.alpha_mode.0));
+        let fog_mode = FogMode(known(FM, st.fog_mode.0));
         let profile = self.profile();
 
         // --- stipple ---
@@ -162,7 +189,7 @@ impl Fbi {
         }
 
         // --- colour selection ---
-        let texel = if st.color_path.texture_enable() {
+        let texel = if color_path.texture_enable() {
             texel()
         } else {
             Rgba::default()
@@ -181,11 +208,13 @@ impl Fbi {
             texel,
             color0: st.color0,
             color1: st.color1,
-            // UNVERIFIED: low byte of the clamped Z (DOSBox Staging); the spec says Z[27:20].
-            z_alpha: z16 as u8,
+            // Z[27:20], the high byte of the clamped 16-bit Z (spec 5.16; MAME, 86Box).
+            // DOSBox Staging takes the low byte; `color_combine` shows MAME and 86Box agree
+            // against it.
+            z_alpha: (z16 >> 8) as u8,
         };
         let other = match source {
-            Source::Triangle => color_path::select_other(st.color_path, &inputs),
+            Source::Triangle => color_path::select_other(color_path, &inputs),
             Source::Lfb(c) => c,
         };
 
@@ -196,15 +225,14 @@ impl Fbi {
         if mode.enable_alpha_mask() && other.a & 1 == 0 {
             return Err(Kill::AlphaMask);
         }
-        let am = st.alpha_mode;
         if am.alpha_test_enable() && !alpha_test::test(am.alpha_function(), other.a, am.alpha_ref())
         {
             return Err(Kill::AlphaFunc);
         }
 
         // --- combine ---
-        let local = color_path::select_local(st.color_path, &inputs);
-        let combined = color_path::combine(st.color_path, other, local, texel.a);
+        let local = color_path::select_local(color_path, &inputs);
+        let combined = color_path::combine(color_path, other, local, texel.a);
 
         // --- fog ---
         let fog_input = fog::FogInput {
@@ -216,7 +244,7 @@ impl Fbi {
             depth_bias: bias.map(|b| b as i16),
         };
         let fogged = fog::apply_fog(
-            st.fog_mode,
+            fog_mode,
             st.fog_color,
             &self.fog_table,
             &fog_input,

@@ -1,12 +1,13 @@
 //! Triangle rasterization: spans from [`crate::setup`], clipping, and the per-pixel walk
 //! with the iterators (spec 5.15 `triangleCMD`, 5.21 clip registers, 5.19 Y origin).
 
-use sst1_regs::Rgba;
+use sst1_regs::{FbzMode, Rgba};
 
 use crate::fbi::Fbi;
 use crate::iter::Iterated;
 use crate::pipeline::{DrawState, Source};
 use crate::setup;
+use crate::specialize::{self, known, RasterKey, LIVE};
 
 /// What the TMU chain gives the FBI for one pixel.
 pub trait TexelSource {
@@ -29,6 +30,9 @@ impl TexelSource for NoTexture {
 impl Fbi {
     /// Draw the triangle held in the parameter registers (the `triangleCMD` command).
     /// The caller has applied subpixel correction if `fbzColorPath` asks for it.
+    ///
+    /// Unless [`Fbi::set_reference`] forced the reference path, a walker specialised for
+    /// the triangle's mode registers is used when [`crate::specialize`] has one.
     pub fn draw_triangle<T: TexelSource>(&mut self, tex: &mut T) {
         self.stats.triangles += 1;
         let mode = self.fbz_mode();
@@ -36,6 +40,42 @@ impl Fbi {
             return;
         };
         let st = DrawState::capture(self, dest);
+        let walk = if self.reference {
+            Fbi::walk::<T, LIVE, LIVE, LIVE, LIVE>
+        } else {
+            specialize::select::<T>(RasterKey::of_state(&st))
+        };
+        walk(self, &st, tex);
+    }
+
+    /// Force the reference path (every mode register read at run time for every pixel)
+    /// instead of the specialised walkers. Both give identical pixels and counters; the
+    /// switch exists to prove that (`crates/board/tests/reference_vs_fast.rs`) and to
+    /// debug the specialisation.
+    pub fn set_reference(&mut self, reference: bool) {
+        self.reference = reference;
+    }
+
+    /// Whether the reference path is forced.
+    pub fn reference(&self) -> bool {
+        self.reference
+    }
+
+    /// Walk the triangle's spans and shade its pixels with the mode registers `CP`
+    /// (`fbzColorPath`), `AM` (`alphaMode`), `FM` (`fogMode`) and `ZM` (`fbzMode`) known
+    /// at compile time, or read from `st` where they are [`LIVE`].
+    pub(crate) fn walk<
+        T: TexelSource,
+        const CP: u32,
+        const AM: u32,
+        const FM: u32,
+        const ZM: u32,
+    >(
+        &mut self,
+        st: &DrawState,
+        tex: &mut T,
+    ) {
+        let mode = FbzMode(known(ZM, st.mode.0));
         let flip = mode.y_origin();
         let (ax, ay) = ((self.params.ax >> 4) as i32, (self.params.ay >> 4) as i32);
         let params = self.params;
@@ -60,8 +100,8 @@ impl Fbi {
             let mut stipple = st.stipple;
             let prow = self.pattern_row(span.y, scry);
             for x in start..stop {
-                let r = self.shade_pixel(
-                    &st,
+                let r = self.shade::<CP, AM, FM, ZM>(
+                    st,
                     x,
                     prow,
                     scry,

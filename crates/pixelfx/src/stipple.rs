@@ -9,7 +9,7 @@
 
 /// Returns `true` if the pixel survives the stipple test. `rotating` is the scanline's
 /// working copy of the stipple register for rotate mode.
-#[inline]
+#[inline(always)]
 pub fn test(pattern_mode: bool, rotating: &mut u32, reg: u32, x: i32, y: i32) -> bool {
     if pattern_mode {
         let bit = ((y & 3) << 3) | (!x & 7);

@@ -453,4 +453,27 @@ mod tests {
         // large value beyond 8 bits is clamped, not wrapped (DOSBox behaviour)
         assert_eq!(detail_factor(0xff | (31 << 8) | (7 << 14), 0), 0xff);
     }
+
+    #[test]
+    fn local_identity_detection() {
+        let decal = both(ZERO_OTHER | ADD_CLOCAL);
+        assert!(TextureCombine::from_texture_mode(decal).is_local_identity());
+        // mselect, reverse and invert do not matter; alpha may use either add bit
+        let m = both(ZERO_OTHER | ADD_CLOCAL | msel(3) | REVERSE | INVERT);
+        assert!(TextureCombine::from_texture_mode(m).is_local_identity());
+        let m = (ZERO_OTHER | ADD_CLOCAL) << 12 | (ZERO_OTHER | ADD_ALOCAL) << 21;
+        assert!(TextureCombine::from_texture_mode(m).is_local_identity());
+        // the other colour, a subtraction, a missing add or RGB adding a_local break it
+        for m in [
+            both(ADD_CLOCAL),
+            both(ZERO_OTHER | SUB_CLOCAL | ADD_CLOCAL),
+            (ZERO_OTHER | ADD_CLOCAL) << 12 | ZERO_OTHER << 21,
+            (ZERO_OTHER | ADD_ALOCAL) << 12 | (ZERO_OTHER | ADD_CLOCAL) << 21,
+        ] {
+            assert!(
+                !TextureCombine::from_texture_mode(m).is_local_identity(),
+                "{m:#x}"
+            );
+        }
+    }
 }

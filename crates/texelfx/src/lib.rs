@@ -411,14 +411,6 @@ impl Tmu {
                 .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
         };
         let smp = self.sample(at(0), at(1), at(2), x, y);
-        // TEXDBG-BEGIN
-        if let Ok(v) = std::env::var("TEXDBG") {
-            let p: Vec<i32> = v.split(',').map(|s| s.parse().unwrap()).collect();
-            if p[0] == x && p[1] == y {
-                eprintln!("TMU{} x{x} y{y} s {:#x} t {:#x} w {:#x} lodbase {:#x} lod {:#x} tex {:?} mode {:08x} tlod {:08x}", self.index, at(0), at(1), at(2), self.lod_base, smp.lod, smp.texel, self.texture_mode, self.t_lod);
-            }
-        }
-        // TEXDBG-END
         let factors = Factors {
             detail: detail_factor(self.t_detail, smp.lod),
             lod_fraction: smp.lod_fraction,

@@ -15,9 +15,18 @@
 //! Source: MAME `rasterizer_texture::fetch_texel` (DOSBox Staging `TEXTURE_PIPELINE` is the
 //! older form of the same code; 86Box uses the same 4-bit weights).
 
+use crate::format::Lookups;
 use crate::lod::{f64_to_i32_x86, pixel_lod, PixelLod};
 use crate::{BilinearPrecision, CoordRounding, LodZeroFrac, Tmu};
 use sst1_regs::{TLod, TextureMode};
+
+/// What decoding the texels of one fetch needs, gathered once per pixel.
+struct Fetch<'a> {
+    /// `tformat`.
+    format: u32,
+    /// Tables for the formats that use them.
+    lookups: Lookups<'a>,
+}
 
 /// The result of one texel fetch.
 pub(crate) struct Sample {
@@ -37,17 +46,17 @@ impl Tmu {
         let mode = TextureMode(self.texture_mode);
         let persp = mode.tpersp_st();
         let floor = self.profile.coord_rounding == CoordRounding::Floor;
-        let (mut s, mut t) = if persp && floor && iterw != 0 {
-            let div = |v: i64| {
-                let q = (i128::from(v) << 8).div_euclid(i128::from(iterw));
-                q as i32
-            };
-            (div(iters), div(itert))
-        } else if persp {
+        let (mut s, mut t) = if persp {
             let recip = 256.0 / iterw as f64;
             let div = |v: i64| {
                 let q = v as f64 * recip;
-                f64_to_i32_x86(if floor { q.floor() } else { q })
+                let i = f64_to_i32_x86(q);
+                // Floor: one less where truncation went up (negative, inexact, in range).
+                if floor && (i as f64) > q && i != i32::MIN {
+                    i - 1
+                } else {
+                    i
+                }
             };
             (div(iters), div(itert))
         } else if floor {
@@ -92,10 +101,14 @@ impl Tmu {
         } else {
             !mode.tminfilter()
         };
+        let fetch = Fetch {
+            format: mode.format() as u32,
+            lookups: self.lookups(),
+        };
         let texel = if point {
-            self.point(ilod, s >> (ilod + 8), t >> (ilod + 8))
+            self.point(&fetch, ilod, s >> (ilod + 8), t >> (ilod + 8))
         } else {
-            self.bilinear(ilod, (s >> ilod) - 0x80, (t >> ilod) - 0x80)
+            self.bilinear(&fetch, ilod, (s >> ilod) - 0x80, (t >> ilod) - 0x80)
         };
         let zero_frac =
             self.profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
@@ -108,7 +121,7 @@ impl Tmu {
     }
 
     /// Reads and decodes texel `(s, t)` of a LOD; coordinates are already in range.
-    fn read(&self, lod: usize, s: u32, t: u32) -> [u8; 4] {
+    fn read(&self, f: &Fetch<'_>, lod: usize, s: u32, t: u32) -> [u8; 4] {
         let addr = self.layout.texel_addr(lod, s, t);
         let byte = |a: u32| u32::from(self.ram[(a & self.ram_mask) as usize]);
         let raw = if self.layout.bpp_shift == 0 {
@@ -116,15 +129,11 @@ impl Tmu {
         } else {
             byte(addr) | byte(addr.wrapping_add(1)) << 8
         };
-        crate::format::decode(
-            TextureMode(self.texture_mode).format() as u32,
-            raw,
-            &self.lookups(),
-        )
+        crate::format::decode(f.format, raw, &f.lookups)
     }
 
     /// Point sampling of integer texel coordinates.
-    fn point(&self, lod: usize, s: i32, t: i32) -> [u8; 4] {
+    fn point(&self, f: &Fetch<'_>, lod: usize, s: i32, t: i32) -> [u8; 4] {
         let smax = self.layout.smax(lod) as i32;
         let tmax = self.layout.tmax(lod) as i32;
         let mut s = s;
@@ -135,19 +144,19 @@ impl Tmu {
         if TextureMode(self.texture_mode).tclampt() {
             t = t.clamp(0, tmax);
         }
-        self.read(lod, (s & smax) as u32, (t & tmax) as u32)
+        self.read(f, lod, (s & smax) as u32, (t & tmax) as u32)
     }
 
     /// Bilinear filtering; `s`, `t` are 24.8 at this LOD with half a texel subtracted.
-    fn bilinear(&self, lod: usize, s: i32, t: i32) -> [u8; 4] {
+    fn bilinear(&self, f: &Fetch<'_>, lod: usize, s: i32, t: i32) -> [u8; 4] {
         let smax = self.layout.smax(lod) as i32;
         let tmax = self.layout.tmax(lod) as i32;
         let (s0, s1) = neighbours(s >> 8, smax, TextureMode(self.texture_mode).tclamps());
         let (t0, t1) = neighbours(t >> 8, tmax, TextureMode(self.texture_mode).tclampt());
-        let c00 = self.read(lod, s0, t0);
-        let c01 = self.read(lod, s1, t0);
-        let c10 = self.read(lod, s0, t1);
-        let c11 = self.read(lod, s1, t1);
+        let c00 = self.read(f, lod, s0, t0);
+        let c01 = self.read(f, lod, s1, t0);
+        let c10 = self.read(f, lod, s0, t1);
+        let c11 = self.read(f, lod, s1, t1);
         let (sf, tf) = ((s & 0xff) as u32, (t & 0xff) as u32);
         let mut out = [0u8; 4];
         for (ch, slot) in out.iter_mut().enumerate() {

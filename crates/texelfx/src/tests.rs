@@ -549,3 +549,57 @@ fn other_tmu_passes_through_combine() {
     };
     assert_eq!(tmu.texel(0, 0, 0, 0, c), c);
 }
+
+#[test]
+fn coordinate_rounding_profile() {
+    // S a hair below zero (-1/2^18 of a LOD-0 texel) on row 2: floor selects texel -1,
+    // which wraps to texel 7 (white); truncation selects texel 0 (green).
+    for persp in [0, PERSP] {
+        let mut tmu = rgb565_8x8(persp);
+        set_iter(&mut tmu, -1, tex(2 * 32 + 16), tex(32), tex(32), ONE_W);
+        tmu.begin_triangle();
+        assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), WHITE, "persp {persp}");
+        tmu.set_profile(TexelProfile {
+            coord_rounding: CoordRounding::TowardZero,
+            ..TexelProfile::default()
+        });
+        assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN, "persp {persp}");
+        // Exactly zero is texel 0 either way.
+        tmu.write_reg(addr::START_S, 0);
+        assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN, "persp {persp}");
+    }
+}
+
+#[test]
+fn decal_invert_profile() {
+    // Decal with both invert bits: the default passes the texel unchanged.
+    let invert = (1 << 20) | (1 << 29);
+    let mut tmu = rgb565_8x8(invert);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    tmu.set_profile(TexelProfile {
+        decal_invert: DecalInvert::Applied,
+        ..TexelProfile::default()
+    });
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 0,
+            g: 255,
+            b: 255,
+            a: 0
+        }
+    );
+    // Not a decal (alpha adds nothing): the invert applies under the default too.
+    let mut tmu = rgb565_8x8(invert);
+    let mode = (fmt(10) | DECAL | invert) & !(1 << 27);
+    tmu.write_reg(addr::TEXTURE_MODE, mode);
+    assert_eq!(
+        tmu.texel(0, 0, 0, 0, BLACK),
+        Rgba {
+            r: 0,
+            g: 255,
+            b: 255,
+            a: 255
+        }
+    );
+}

@@ -132,46 +132,22 @@ fn write_front_png(board: &Board, path: &Path) -> Result<(u32, u32), String> {
     Ok((width, height))
 }
 
-/// The counters `--stats` prints.
-struct Stats {
-    pixels_in: u32,
-    chroma_fail: u32,
-    zfunc_fail: u32,
-    afunc_fail: u32,
-    pixels_out: u32,
-    triangles: u64,
-    fastfills: u64,
-    swaps: u64,
-}
+/// The counters `--stats` prints: the board's own statistics (spec 5.31-5.35, kept
+/// without the hardware registers' 24-bit wrap) and command counts.
+struct Stats(sst1_board::Stats);
 
 impl Stats {
-    /// HOOK(board.stats()): once the board exposes its counters, take them from there.
-    /// Until then the pixel counters are read through the bus (24-bit registers, spec
-    /// 5.31-5.35) and the command counts come from the trace's own writes.
-    fn collect(board: &mut Board, counts: &OpCounts) -> Self {
-        let mut counter = |offset| board.read32(offset) & 0xff_ffff;
-        Stats {
-            pixels_in: counter(addr::FBI_PIXELS_IN),
-            chroma_fail: counter(addr::FBI_CHROMA_FAIL),
-            zfunc_fail: counter(addr::FBI_ZFUNC_FAIL),
-            afunc_fail: counter(addr::FBI_AFUNC_FAIL),
-            pixels_out: counter(addr::FBI_PIXELS_OUT),
-            triangles: counts.triangles,
-            fastfills: counts.fastfills,
-            swaps: counts.swaps,
-        }
-    }
-
     fn to_json(&self) -> serde_json::Value {
+        let s = &self.0;
         serde_json::json!({
-            "pixels_in": self.pixels_in,
-            "chroma_fail": self.chroma_fail,
-            "zfunc_fail": self.zfunc_fail,
-            "afunc_fail": self.afunc_fail,
-            "pixels_out": self.pixels_out,
-            "triangles": self.triangles,
-            "fastfills": self.fastfills,
-            "swaps": self.swaps,
+            "pixels_in": s.pixels_in,
+            "chroma_fail": s.chroma_fail,
+            "zfunc_fail": s.zfunc_fail,
+            "afunc_fail": s.afunc_fail,
+            "pixels_out": s.pixels_out,
+            "triangles": s.triangles,
+            "fastfills": s.fastfills,
+            "swaps": s.swaps,
         })
     }
 }
@@ -194,17 +170,20 @@ fn replay(
         println!("wrote {} ({w}x{h})", png.display());
     }
     if stats || stats_json.is_some() {
-        let s = Stats::collect(&mut board, &OpCounts::of(&trace));
+        let s = Stats(board.stats());
         if stats {
-            println!("pixels in    {}", s.pixels_in);
-            println!("chroma fail  {}", s.chroma_fail);
-            println!("zfunc fail   {}", s.zfunc_fail);
-            println!("afunc fail   {}", s.afunc_fail);
-            println!("pixels out   {}", s.pixels_out);
-            println!("triangles    {}", s.triangles);
-            println!("fastfills    {}", s.fastfills);
-            println!("swaps        {}", s.swaps);
-            // HOOK(board.diagnostics()): print the board's diagnostic counts here.
+            let c = &s.0;
+            println!("pixels in    {}", c.pixels_in);
+            println!("chroma fail  {}", c.chroma_fail);
+            println!("zfunc fail   {}", c.zfunc_fail);
+            println!("afunc fail   {}", c.afunc_fail);
+            println!("pixels out   {}", c.pixels_out);
+            println!("triangles    {}", c.triangles);
+            println!("fastfills    {}", c.fastfills);
+            println!("swaps        {}", c.swaps);
+            for (what, n) in board.diagnostics().iter() {
+                println!("ignored      {n} x {what:?}");
+            }
         }
         if let Some(file) = stats_json {
             let text = serde_json::to_string_pretty(&s.to_json()).map_err(|e| e.to_string())?;

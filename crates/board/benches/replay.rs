@@ -1,0 +1,194 @@
+//! Replay throughput: runs the two heavy conformance traces (or any trace whose name
+//! contains a command-line filter) on the fast pixel path and on the reference path and
+//! prints Mpixels/s (`fbiPixelsIn` per second), triangles/s and the speedup.
+//!
+//! ```text
+//! cargo bench -p sst1-board --bench replay                  # perf_gouraud_heavy, perf_tex_heavy
+//! cargo bench -p sst1-board --bench replay -- gouraud       # traces whose name contains "gouraud"
+//! BENCH_ITERS=5 cargo bench -p sst1-board --bench replay    # best of 5 runs per path
+//! cargo bench -p sst1-board --bench replay -- --dump-raster-stats [FILTER...]
+//! ```
+//!
+//! `--dump-raster-stats` replays every trace (or those matching the filters) once and
+//! prints the mode-register keys their triangles used, most pixels first, in the syntax
+//! of `pixelfx::specialize`'s table, marking those that already have an entry.
+//!
+//! Each run builds a fresh board and replays the whole trace (`sst1_trace::execute`);
+//! the time reported is the best of `BENCH_ITERS` runs (default 3), which is the least
+//! disturbed by other load on the machine. Trace loading is not timed.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use std::collections::BTreeMap;
+
+use pixelfx::specialize::RasterKey;
+use sst1_board::{Board, Stats};
+use sst1_regs::{addr, RegisterBus};
+use sst1_trace::{execute, load_trace, Trace, TraceOp};
+
+/// The traces run when no filter is given.
+const DEFAULT_TRACES: [&str; 2] = ["perf_gouraud_heavy", "perf_tex_heavy"];
+
+/// Replay `trace` once on a fresh board; returns the elapsed time and the counters.
+fn run_once(trace: &Trace, reference: bool) -> (Duration, Stats) {
+    let mut board = Board::new(trace.board_config());
+    board.set_reference(reference);
+    let start = Instant::now();
+    let dumps = execute(&trace.ops, &mut board, |_| {});
+    let elapsed = start.elapsed();
+    std::hint::black_box(dumps);
+    (elapsed, board.stats())
+}
+
+/// Best time of `iters` runs, and the counters of the last one.
+fn best_of(trace: &Trace, reference: bool, iters: u32) -> (Duration, Stats) {
+    let mut best = (Duration::MAX, Stats::default());
+    for _ in 0..iters {
+        let (t, s) = run_once(trace, reference);
+        if t < best.0 {
+            best = (t, s);
+        }
+    }
+    best
+}
+
+fn report(label: &str, t: Duration, s: &Stats) {
+    let secs = t.as_secs_f64();
+    println!(
+        "  {label:<9} {secs:8.3} s  {:8.2} Mpix/s  {:10.0} tri/s  ({} pixels in, {} triangles)",
+        s.pixels_in as f64 / secs / 1e6,
+        s.triangles as f64 / secs,
+        s.pixels_in,
+        s.triangles
+    );
+}
+
+fn main() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let dump_stats = args.iter().any(|a| a == "--dump-raster-stats");
+    let filters: Vec<String> = args.into_iter().filter(|a| !a.starts_with("--")).collect();
+    let iters = std::env::var("BENCH_ITERS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(3u32)
+        .max(1);
+    let mut paths: Vec<PathBuf> = ["conformance/traces", "glide-sdk/traces"]
+        .iter()
+        .filter_map(|d| std::fs::read_dir(root.join(d)).ok())
+        .flatten()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let name = trace_name(p);
+            if filters.is_empty() {
+                dump_stats || DEFAULT_TRACES.contains(&name.as_str())
+            } else {
+                filters.iter().any(|f| name.contains(f.as_str()))
+            }
+        })
+        .collect();
+    paths.sort();
+    if dump_stats {
+        raster_stats(&paths);
+        return;
+    }
+    println!("best of {iters} run(s) per path");
+    for path in paths {
+        let trace = match load_trace(&path) {
+            Ok(t) => t,
+            Err(e) => {
+                eprintln!("{e}");
+                continue;
+            }
+        };
+        println!("{}", trace_name(&path));
+        let (tf, sf) = best_of(&trace, false, iters);
+        report("fast", tf, &sf);
+        let (tr, sr) = best_of(&trace, true, iters);
+        report("reference", tr, &sr);
+        println!(
+            "  speedup   {:.2}x{}",
+            tr.as_secs_f64() / tf.as_secs_f64(),
+            if sf == sr { "" } else { "  (COUNTERS DIFFER)" }
+        );
+    }
+}
+
+/// `name` of `.../name.trace[.gz]`.
+fn trace_name(p: &Path) -> String {
+    let file = p
+        .file_name()
+        .map_or(String::new(), |f| f.to_string_lossy().into_owned());
+    file.split('.').next().unwrap_or_default().to_owned()
+}
+
+/// Triangles and pixels drawn per raster key, with the first trace that used the key.
+#[derive(Default)]
+struct KeyUse {
+    triangles: u64,
+    pixels: u64,
+    first_trace: String,
+}
+
+/// Replay each trace, counting triangles and pixels per [`RasterKey`]; print the keys,
+/// most pixels first, as entries of the specialisation table.
+fn raster_stats(paths: &[PathBuf]) {
+    let mut uses: BTreeMap<RasterKey, KeyUse> = BTreeMap::new();
+    for path in paths {
+        let Ok(trace) = load_trace(path) else {
+            eprintln!("{}: cannot load", path.display());
+            continue;
+        };
+        let name = trace_name(path);
+        let mut board = Board::new(trace.board_config());
+        for op in &trace.ops {
+            match *op {
+                TraceOp::Write { addr, value } if is_triangle_command(addr) => {
+                    let key = RasterKey::of(board.fbi());
+                    let before = board.stats().pixels_in;
+                    board.write32(addr, value);
+                    let u = uses.entry(key).or_default();
+                    if u.first_trace.is_empty() {
+                        u.first_trace.clone_from(&name);
+                    }
+                    u.triangles += 1;
+                    u.pixels += board.stats().pixels_in - before;
+                }
+                TraceOp::Write { addr, value } => board.write32(addr, value),
+                TraceOp::Pci { offset, value } => board.pci_write(offset, value),
+                TraceOp::Read { addr, .. } => {
+                    board.read32(addr);
+                }
+                TraceOp::Config { .. } | TraceOp::Dump { .. } => {}
+            }
+        }
+    }
+    let mut sorted: Vec<_> = uses.into_iter().collect();
+    sorted.sort_by(|a, b| b.1.pixels.cmp(&a.1.pixels));
+    for (key, u) in sorted {
+        println!(
+            "    /// {}: {} triangles, {} pixels.{}\n    {}",
+            u.first_trace,
+            u.triangles,
+            u.pixels,
+            if key.is_specialised() {
+                " (in table)"
+            } else {
+                ""
+            },
+            key.table_entry()
+        );
+    }
+}
+
+/// Whether a write at bus address `addr` is a `triangleCMD`/`ftriangleCMD` for the FBI
+/// (register space, chip field broadcast or FBI; the command offsets are the same in the
+/// remapped register map).
+fn is_triangle_command(addr: u32) -> bool {
+    let chips = (addr >> 10) & 0xf;
+    let offset = addr & 0x3fc;
+    addr < 0x40_0000
+        && (chips == 0 || chips & 1 != 0)
+        && (offset == addr::TRIANGLE_CMD || offset == addr::F_TRIANGLE_CMD)
+}
