@@ -1,7 +1,7 @@
 //! Differential test of the specialised pixel path (`pixelfx::specialize`) against the
-//! reference path (`Board::set_reference(true)`): every conformance and glide-sdk trace is
-//! replayed both ways, and every dump the trace takes, the final front, back and aux
-//! buffers and the statistics counters must be bit-identical.
+//! reference path (`Board::set_reference(true)`): every conformance, glide-sdk and example
+//! trace is replayed both ways, and every dump the trace takes, the final front, back and
+//! aux buffers and the statistics counters must be bit-identical.
 //!
 //! `perf_tex_heavy` (about a minute per replay on the reference path, texture sampling
 //! bound) runs only in the ignored test: `cargo test -p sst1-board --release --test
@@ -15,9 +15,16 @@ use sst1_trace::{execute, load_trace};
 /// Traces too slow for every CI run; [`slow_traces_identical`] covers them.
 const SLOW: &[&str] = &["perf_tex_heavy"];
 
-/// What one replay produced: the dumps (file name, values), final buffers and counters.
+/// One buffer read out of the board: its name, row width and values.
+struct Buffer {
+    name: String,
+    width: u32,
+    data: Vec<u16>,
+}
+
+/// What one replay produced: the dumps, the final buffers and the counters.
 struct Outcome {
-    dumps: Vec<(String, Vec<u16>)>,
+    buffers: Vec<Buffer>,
     stats: Stats,
 }
 
@@ -25,19 +32,27 @@ fn replay(path: &Path, reference: bool) -> Outcome {
     let trace = load_trace(path).unwrap_or_else(|e| panic!("{e}"));
     let mut board = Board::new(trace.board_config());
     board.set_reference(reference);
-    let mut dumps: Vec<(String, Vec<u16>)> = execute(&trace.ops, &mut board, |_| {})
+    let mut buffers: Vec<Buffer> = execute(&trace.ops, &mut board, |_| {})
         .into_iter()
-        .map(|d| (d.file, d.data))
+        .map(|d| Buffer {
+            name: d.file,
+            width: d.width,
+            data: d.data,
+        })
         .collect();
     for (name, kind) in [
         ("final front", BufferKind::Front),
         ("final back", BufferKind::Back),
         ("final aux", BufferKind::Aux),
     ] {
-        dumps.push((name.to_owned(), board.dump_buffer(kind)));
+        buffers.push(Buffer {
+            name: name.to_owned(),
+            width: board.display_size().0,
+            data: board.dump_buffer(kind),
+        });
     }
     Outcome {
-        dumps,
+        buffers,
         stats: board.stats(),
     }
 }
@@ -54,32 +69,35 @@ fn compare(path: &Path) -> Vec<String> {
             reference.stats, fast.stats
         ));
     }
-    if reference.dumps.len() != fast.dumps.len() {
+    if reference.buffers.len() != fast.buffers.len() {
         problems.push(format!("{name}: dump count differs"));
     }
-    for ((file, r), (_, f)) in reference.dumps.iter().zip(&fast.dumps) {
-        let diffs: Vec<usize> = (0..r.len().max(f.len()))
-            .filter(|&i| r.get(i) != f.get(i))
+    for (r, f) in reference.buffers.iter().zip(&fast.buffers) {
+        let diffs: Vec<usize> = (0..r.data.len().max(f.data.len()))
+            .filter(|&i| r.data.get(i) != f.data.get(i))
             .collect();
         if let Some(&first) = diffs.first() {
+            let w = r.width.max(1) as usize;
             problems.push(format!(
-                "{name} {file}: {} values differ; first at index {first}: reference {:04x?} fast {:04x?}",
+                "{name} {}: {} values differ; first at (x {}, y {}): reference {:04x?} fast {:04x?}",
+                r.name,
                 diffs.len(),
-                r.get(first),
-                f.get(first)
+                first % w,
+                first / w,
+                r.data.get(first),
+                f.data.get(first)
             ));
         }
     }
     problems
 }
 
-/// The traces of trace set `set` (`conformance` or `glide-sdk`), sorted, whose names
+/// The traces in `dir` (relative to the repository's `traces/`), sorted, whose names
 /// pass `keep`.
-fn traces(set: &str, keep: impl Fn(&str) -> bool) -> Vec<PathBuf> {
+fn traces(dir: &str, keep: impl Fn(&str) -> bool) -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../traces")
-        .join(set)
-        .join("traces");
+        .join(dir);
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.expect("directory entry").path())
@@ -104,7 +122,7 @@ fn check_all(paths: &[PathBuf]) {
 
 #[test]
 fn conformance_traces_identical() {
-    let paths = traces("conformance", |name| !SLOW.contains(&name));
+    let paths = traces("conformance/traces", |name| !SLOW.contains(&name));
     // 41 traces less the slow one.
     assert_eq!(paths.len(), 40);
     check_all(&paths);
@@ -112,7 +130,14 @@ fn conformance_traces_identical() {
 
 #[test]
 fn glide_sdk_traces_identical() {
-    let paths = traces("glide-sdk", |_| true);
+    let paths = traces("glide-sdk/traces", |_| true);
+    assert_eq!(paths.len(), 18);
+    check_all(&paths);
+}
+
+#[test]
+fn example_traces_identical() {
+    let paths = traces("examples", |_| true);
     assert!(!paths.is_empty());
     check_all(&paths);
 }
@@ -120,7 +145,7 @@ fn glide_sdk_traces_identical() {
 #[test]
 #[ignore = "about two minutes: the texture-heavy benchmark trace, replayed twice"]
 fn slow_traces_identical() {
-    let paths = traces("conformance", |name| SLOW.contains(&name));
+    let paths = traces("conformance/traces", |name| SLOW.contains(&name));
     assert_eq!(paths.len(), SLOW.len());
     check_all(&paths);
 }

@@ -4,7 +4,7 @@
 //!
 //! Rows are raster rows: with `fbzMode.y_origin` set they are flipped like triangle rows
 //! (spec 5.21: "the orientation of the Y origin is defined by fbzMode bit 17"). The
-//! dither cell row follows [`crate::profile::PatternRow`], as for triangles.
+//! dither cell is indexed with the raster row (see the comment in the loop).
 //! Source: spec 5.23; MAME and DOSBox Staging agree on everything else.
 
 use sst1_regs::{addr, Rgba};
@@ -50,8 +50,11 @@ impl Fbi {
             let scry = self.screen_y(y, mode.y_origin());
             for x in left..right {
                 if let Some(i) = dest.and_then(|d| self.fb.index(d, x, scry)) {
-                    let prow = self.pattern_row(y, scry);
-                    self.fb.ram[i] = cell[(prow & 3) as usize][(x & 3) as usize];
+                    // The fill's dither cell is indexed with the raster row, whatever
+                    // `PatternRow` says for triangles: with the screen row the glide-sdk
+                    // clears (lower-left origin, dithering on) differ from all three
+                    // references on ~120 k pixels; with the raster row on none.
+                    self.fb.ram[i] = cell[(y & 3) as usize][(x & 3) as usize];
                     self.stats.pixels_out += 1;
                 }
                 if let Some(i) = aux.and_then(|a| self.fb.index(a, x, scry)) {

@@ -109,7 +109,10 @@ impl Fbi {
     /// chip select and the `initEnable` gate for `fbiInit*`.
     pub fn write_reg(&mut self, offset: u32, value: u32) -> Command {
         let idx = addr::index(offset);
-        if self.params.write(offset & 0x3fc, value) {
+        if self
+            .params
+            .write(offset & 0x3fc, value, self.profile.float_overflow)
+        {
             return Command::None;
         }
         match offset & 0x3fc {

@@ -46,26 +46,53 @@ pub struct TriangleParams {
     pub dwdy: Fx32_32,
 }
 
-/// Convert an IEEE single to fixed point with `frac_bits` fraction bits, truncating toward
-/// zero and saturating at the `i32` range, as the chip's float registers do.
+/// What a float register write gives when the value does not fit the fixed format.
 ///
-/// Source: spec 5.2 (float registers are converted to the fixed formats on write); the
-/// truncation toward zero and saturation follow DOSBox Staging's `float_to_int32`, which
-/// MAME's conversion matches for in-range values.
-pub fn float_to_fixed32(bits: u32, frac_bits: i32) -> i32 {
+/// All three references truncate toward zero for values in range; they differ when the
+/// shifted mantissa overflows 32 bits. Glide 3's console text writes such values
+/// (`fstartZ` = NaN, `fdZdX` ~ 6e12 in `glide-sdk/test30`); there MAME and 86Box give
+/// the same depth and DOSBox Staging another (6451 aux pixels).
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum FloatOverflow {
+    /// MAME: shifts of 0..=31 keep the low 32 bits (they wrap); larger exponents give
+    /// 0x7fffffff; then the sign is applied.
+    #[default]
+    Wrap,
+    /// DOSBox Staging: the magnitude saturates at 0x7fffffff, then the sign is applied.
+    Saturate,
+    /// 86Box (`(int)(f * 4096.0f)` on x86): any value out of range reads 0x80000000.
+    Indefinite,
+}
+
+/// Convert an IEEE single to fixed point with `frac_bits` fraction bits, truncating toward
+/// zero, as the chip's float registers do (spec 5.2: float registers are converted to the
+/// fixed formats on write). `overflow` says what out-of-range values give.
+pub fn float_to_fixed32(bits: u32, frac_bits: i32, overflow: FloatOverflow) -> i32 {
     let exp = ((bits >> 23) & 0xff) as i32 - 127 - 23 + frac_bits;
     let mantissa = ((bits & 0x7f_ffff) | 0x80_0000) as i64;
-    let magnitude = if exp < 0 {
+    let negative = bits & 0x8000_0000 != 0;
+    let magnitude: i64 = if exp < 0 {
         if exp <= -31 {
             0
         } else {
             mantissa >> -exp
         }
     } else {
-        (mantissa << exp.min(31)).min(i32::MAX as i64)
+        let wide = if exp < 40 { mantissa << exp } else { i64::MAX };
+        if wide > i32::MAX as i64 {
+            match overflow {
+                FloatOverflow::Wrap if exp < 32 => (mantissa << exp) as u32 as i32 as i64,
+                FloatOverflow::Wrap | FloatOverflow::Saturate => i32::MAX as i64,
+                FloatOverflow::Indefinite => return i32::MIN,
+            }
+        } else {
+            wide
+        }
     };
     let v = magnitude as i32;
-    if bits & 0x8000_0000 != 0 {
+    if negative {
         v.wrapping_neg()
     } else {
         v
@@ -105,7 +132,7 @@ impl TriangleParams {
     /// Apply a write to one of the parameter registers (normal-map byte `offset`,
     /// 0x008..=0x0fc). `value` is the raw bus word; float registers are converted.
     /// Returns `false` if `offset` is not an FBI parameter register.
-    pub fn write(&mut self, offset: u32, value: u32) -> bool {
+    pub fn write(&mut self, offset: u32, value: u32, overflow: FloatOverflow) -> bool {
         // Float registers mirror the fixed ones 0x80 bytes higher (spec 5, register table).
         let (reg, float) = if (addr::F_VERTEX_AX..=addr::F_D_W_DY).contains(&offset) {
             (offset - 0x80, true)
@@ -114,7 +141,7 @@ impl TriangleParams {
         };
         let fixed = |frac: i32| {
             if float {
-                float_to_fixed32(value, frac) as u32
+                float_to_fixed32(value, frac, overflow) as u32
             } else {
                 value
             }
@@ -153,6 +180,11 @@ impl TriangleParams {
             _ => return false,
         }
         true
+    }
+
+    /// [`Self::write`] with the default overflow behaviour (for tests and tools).
+    pub fn write_default(&mut self, offset: u32, value: u32) -> bool {
+        self.write(offset, value, FloatOverflow::default())
     }
 
     /// Subpixel correction (fbzColorPath bit 26, spec 5.16): move the start values from
@@ -200,10 +232,28 @@ mod tests {
 
     #[test]
     fn float_conversion() {
-        assert_eq!(float_to_fixed32(1.5f32.to_bits(), 4), 24);
-        assert_eq!(float_to_fixed32((-1.5f32).to_bits(), 4), -24);
-        assert_eq!(float_to_fixed32(0.0f32.to_bits(), 12), 0);
-        assert_eq!(float_to_fixed32(1e30f32.to_bits(), 12), i32::MAX);
+        let w = FloatOverflow::Wrap;
+        assert_eq!(float_to_fixed32(1.5f32.to_bits(), 4, w), 24);
+        assert_eq!(float_to_fixed32((-1.5f32).to_bits(), 4, w), -24);
+        assert_eq!(float_to_fixed32(0.0f32.to_bits(), 12, w), 0);
+        assert_eq!(float_to_fixed32(1e30f32.to_bits(), 12, w), i32::MAX);
+        assert_eq!(
+            float_to_fixed32(1e30f32.to_bits(), 12, FloatOverflow::Indefinite),
+            i32::MIN
+        );
+        // 0x54adc3f7 (~5.97e12) with 12 fraction bits: mantissa << 31. MAME keeps the low
+        // 32 bits (0x80000000), DOSBox saturates, 86Box reads the x86 "indefinite" value.
+        assert_eq!(float_to_fixed32(0x54ad_c3f7, 12, w), i32::MIN);
+        assert_eq!(
+            float_to_fixed32(0x54ad_c3f7, 12, FloatOverflow::Saturate),
+            i32::MAX
+        );
+        assert_eq!(
+            float_to_fixed32(0x54ad_c3f7, 12, FloatOverflow::Indefinite),
+            i32::MIN
+        );
+        // NaN: exponent 255 -> 0x7fffffff, negated by the sign bit (MAME, DOSBox).
+        assert_eq!(float_to_fixed32(0xffff_ffff, 12, w), -i32::MAX);
         assert_eq!(float_to_fixed64(0.5f32.to_bits(), 32), 1 << 31);
         assert_eq!(float_to_fixed64((-2.0f32).to_bits(), 32), -(2i64 << 32));
     }
@@ -211,17 +261,17 @@ mod tests {
     #[test]
     fn fixed_and_float_registers() {
         let mut p = TriangleParams::default();
-        assert!(p.write(addr::START_R, 0x00ff_f000));
+        assert!(p.write_default(addr::START_R, 0x00ff_f000));
         assert_eq!(p.start[0], -4096);
-        assert!(p.write(addr::START_A, 0x0001_0000));
+        assert!(p.write_default(addr::START_A, 0x0001_0000));
         assert_eq!(p.start[3], 0x10000);
-        assert!(p.write(addr::F_D_G_DY, 2.0f32.to_bits()));
+        assert!(p.write_default(addr::F_D_G_DY, 2.0f32.to_bits()));
         assert_eq!(p.dy[1], 2 << 12);
-        assert!(p.write(addr::START_W, 0x4000_0000));
+        assert!(p.write_default(addr::START_W, 0x4000_0000));
         assert_eq!(p.start_w, 1 << 32);
-        assert!(p.write(addr::F_VERTEX_CY, 10.25f32.to_bits()));
+        assert!(p.write_default(addr::F_VERTEX_CY, 10.25f32.to_bits()));
         assert_eq!(p.cy, 164);
-        assert!(!p.write(addr::FBZ_MODE, 0));
+        assert!(!p.write_default(addr::FBZ_MODE, 0));
     }
 
     #[test]

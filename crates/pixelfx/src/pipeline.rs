@@ -19,7 +19,7 @@ use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
 use crate::iter::{clamp_colour, clamp_z, wfloat, Iterated};
 use crate::profile::{AuxWrite, ClipRightEdge};
-use crate::specialize::{known, known_alpha_mode, LIVE};
+use crate::specialize::{value, Known, LIVE};
 use crate::stats::Kill;
 use crate::{alpha_test, blend, depth, fog, stipple};
 
@@ -129,13 +129,13 @@ impl Fbi {
     /// `prow` is the row the dither and stipple patterns are indexed with (see
     /// [`crate::profile::PatternRow`]).
     ///
-    /// `CP`, `AM`, `FM` and `ZM` are the values of `fbzColorPath`, `alphaMode`, `fogMode`
-    /// and `fbzMode` known at compile time, or [`LIVE`] to read them from `st` (see
-    /// [`crate::specialize`]; the caller guarantees that a known value equals `st`'s).
-    /// The stages are the same code either way: a known value only lets the compiler
-    /// fold the bit tests and drop the stages that are off.
+    /// `CP`, `AM`, `FM` and `ZM` are the bits of `fbzColorPath`, `alphaMode`, `fogMode`
+    /// and `fbzMode` known at compile time ([`LIVE`]: none; see [`crate::specialize`]);
+    /// the caller guarantees that they equal `st`'s. The stages are the same code either
+    /// way: known bits only let the compiler fold the bit tests and drop the stages that
+    /// are off.
     #[inline(always)]
-    pub(crate) fn shade<const CP: u32, const AM: u32, const FM: u32, const ZM: u32>(
+    pub(crate) fn shade<const CP: Known, const AM: Known, const FM: Known, const ZM: Known>(
         &mut self,
         st: &DrawState,
         x: i32,
@@ -146,10 +146,10 @@ impl Fbi {
         stipple_state: &mut u32,
         texel: impl FnOnce() -> Rgba,
     ) -> Result<(), Kill> {
-        let mode = FbzMode(known(ZM, st.mode.0));
-        let color_path = FbzColorPath(known(CP, st.color_path.0));
-        let am = AlphaMode(known_alpha_mode(AM, st.alpha_mode.0));
-        let fog_mode = FogMode(known(FM, st.fog_mode.0));
+        let mode = FbzMode(value(ZM, st.mode.0));
+        let color_path = FbzColorPath(value(CP, st.color_path.0));
+        let am = AlphaMode(value(AM, st.alpha_mode.0));
+        let fog_mode = FogMode(value(FM, st.fog_mode.0));
         let profile = self.profile();
 
         // --- stipple ---

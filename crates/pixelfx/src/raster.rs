@@ -7,7 +7,7 @@ use crate::fbi::Fbi;
 use crate::iter::Iterated;
 use crate::pipeline::{DrawState, Source};
 use crate::setup;
-use crate::specialize::{self, known, RasterKey, LIVE};
+use crate::specialize::{self, value, Known, RasterKey, LIVE};
 
 /// What the TMU chain gives the FBI for one pixel.
 pub trait TexelSource {
@@ -61,21 +61,29 @@ impl Fbi {
         self.reference
     }
 
-    /// Walk the triangle's spans and shade its pixels with the mode registers `CP`
-    /// (`fbzColorPath`), `AM` (`alphaMode`), `FM` (`fogMode`) and `ZM` (`fbzMode`) known
-    /// at compile time, or read from `st` where they are [`LIVE`].
+    /// Walk the triangle's spans and shade its pixels with the bits of `fbzColorPath`
+    /// (`CP`), `alphaMode` (`AM`), `fogMode` (`FM`) and `fbzMode` (`ZM`) that are known
+    /// at compile time folded in (see [`crate::specialize::Known`]); the rest is read
+    /// from `st`. The caller guarantees that the known bits equal `st`'s.
     pub(crate) fn walk<
         T: TexelSource,
-        const CP: u32,
-        const AM: u32,
-        const FM: u32,
-        const ZM: u32,
+        const CP: Known,
+        const AM: Known,
+        const FM: Known,
+        const ZM: Known,
     >(
         &mut self,
         st: &DrawState,
         tex: &mut T,
     ) {
-        let mode = FbzMode(known(ZM, st.mode.0));
+        debug_assert!(
+            value(CP, st.color_path.0) == st.color_path.0
+                && value(AM, st.alpha_mode.0) == st.alpha_mode.0
+                && value(FM, st.fog_mode.0) == st.fog_mode.0
+                && value(ZM, st.mode.0) == st.mode.0,
+            "walker specialised for other modes"
+        );
+        let mode = FbzMode(value(ZM, st.mode.0));
         let flip = mode.y_origin();
         let (ax, ay) = ((self.params.ax >> 4) as i32, (self.params.ay >> 4) as i32);
         let params = self.params;

@@ -3,17 +3,19 @@
 //! MAME's `voodoo_renderer` predefined rasterizer table).
 //!
 //! [`crate::pipeline`] is written once against `fbzColorPath`, `alphaMode`, `fogMode`
-//! and `fbzMode`. Each of the four is a const generic parameter of the walker that is
-//! either a register value or [`LIVE`] ("read it at run time"). The all-[`LIVE`]
-//! instantiation is the reference path; an instantiation with known values is the same
-//! code after constant folding: bit tests vanish and disabled stages are dropped.
+//! and `fbzMode`. Each of the four is a const generic parameter of the walker
+//! ([`Known`]: a mask of the bits known at compile time and their values). The
+//! instantiation that knows nothing ([`LIVE`] x 4) is the reference path; one that
+//! knows a register's bits is the same code after constant folding: bit tests vanish,
+//! the combine units' input selections become fixed and disabled stages are dropped.
 //!
-//! [`select`] picks the walker for a triangle: an entry of [`SPECIALISED`] whose key
-//! equals the triangle's [`RasterKey`], otherwise the reference walker. A key holds the
-//! whole register value (only `alphaMode.alpha_ref` is left out and read at run time),
-//! so a specialised walker runs with exactly the values the reference would read.
-//! `crates/board/tests/reference_vs_fast.rs` replays every conformance trace both ways
-//! and requires identical buffers and counters.
+//! [`select`] picks the walker for a triangle: the entry of [`SPECIALISED`] whose key
+//! equals the triangle's [`RasterKey`], otherwise the reference walker. A key holds every
+//! bit the FBI stores (only `alphaMode.alpha_ref` is left out and read at run time), so a
+//! specialised walker computes with exactly the values the reference reads.
+//! `crates/board/tests/reference_vs_fast.rs` replays every trace both ways and requires
+//! identical buffers and counters; `Board::set_reference` / [`Fbi::set_reference`]
+//! force the reference walker.
 //!
 //! To find candidates for the table: `cargo bench -p sst1-board --bench replay --
 //! --dump-raster-stats [TRACE-FILTER...]` prints the keys of the replayed triangles in
@@ -25,35 +27,42 @@ use crate::fbi::Fbi;
 use crate::pipeline::DrawState;
 use crate::raster::TexelSource;
 
-/// The const-generic value that means "read this register at run time".
-///
-/// A register may legitimately hold `u32::MAX` (only `alphaMode` has all 32 bits); it is
-/// then simply read at run time, which gives the same value.
-pub const LIVE: u32 = u32::MAX;
+/// A mode register as a const generic parameter: the high word is a mask of the bits
+/// known at compile time, the low word their values; the other bits are read at run
+/// time. Built with [`known_bits`], applied with [`value`].
+pub type Known = u64;
+
+/// Nothing known: read the whole register at run time (the reference path).
+pub const LIVE: Known = 0;
+
+/// The bits of each register that an exact key covers. The FBI masks unimplemented bits
+/// on write (spec 5 register table), so these are all the bits `fbzColorPath`, `fogMode`
+/// and `fbzMode` can hold; `alphaMode` leaves out [`ALPHA_REF_BITS`].
+pub const COLOR_PATH_BITS: u32 = 0x0fff_ffff;
+/// See [`COLOR_PATH_BITS`].
+pub const ALPHA_MODE_BITS: u32 = !ALPHA_REF_BITS;
+/// See [`COLOR_PATH_BITS`].
+pub const FOG_MODE_BITS: u32 = 0x3f;
+/// See [`COLOR_PATH_BITS`].
+pub const FBZ_MODE_BITS: u32 = 0x001f_ffff;
 
 /// The `alphaMode` bits that are never part of a key: `alpha_ref` (bits 31:24) is only a
 /// comparison operand, cheap to read at run time, and varies between otherwise equal
 /// states.
 pub const ALPHA_REF_BITS: u32 = 0xff00_0000;
 
-/// The register value a walker uses: the known constant, or the live value for [`LIVE`].
-#[inline(always)]
-pub(crate) const fn known(constant: u32, live: u32) -> u32 {
-    if constant == LIVE {
-        live
-    } else {
-        constant
-    }
+/// A [`Known`] with the bits of `mask` known to be those of `value`.
+pub const fn known_bits(mask: u32, value: u32) -> Known {
+    (mask as u64) << 32 | (value & mask) as u64
 }
 
-/// [`known`] for `alphaMode`, whose keys leave out [`ALPHA_REF_BITS`].
+/// The register value a walker uses: the known bits of `k`, the others from `live`.
+/// The caller guarantees that the known bits equal `live`'s, so this is always `live`;
+/// written this way the compiler sees the known bits as constants.
 #[inline(always)]
-pub(crate) const fn known_alpha_mode(constant: u32, live: u32) -> u32 {
-    if constant == LIVE {
-        live
-    } else {
-        constant | (live & ALPHA_REF_BITS)
-    }
+pub(crate) const fn value(k: Known, live: u32) -> u32 {
+    let mask = (k >> 32) as u32;
+    (live & !mask) | k as u32
 }
 
 /// `[f(0), f(1), f(2)]`: one value per colour channel. The same as
@@ -82,10 +91,10 @@ impl RasterKey {
     /// The key of the registers currently in `fbi` (what the next triangle would use).
     pub fn of(fbi: &Fbi) -> Self {
         Self {
-            color_path: fbi.reg(addr::FBZ_COLOR_PATH),
-            alpha_mode: fbi.reg(addr::ALPHA_MODE) & !ALPHA_REF_BITS,
-            fog_mode: fbi.reg(addr::FOG_MODE),
-            fbz_mode: fbi.reg(addr::FBZ_MODE),
+            color_path: fbi.reg(addr::FBZ_COLOR_PATH) & COLOR_PATH_BITS,
+            alpha_mode: fbi.reg(addr::ALPHA_MODE) & ALPHA_MODE_BITS,
+            fog_mode: fbi.reg(addr::FOG_MODE) & FOG_MODE_BITS,
+            fbz_mode: fbi.reg(addr::FBZ_MODE) & FBZ_MODE_BITS,
         }
     }
 
@@ -93,10 +102,10 @@ impl RasterKey {
     #[inline]
     pub(crate) fn of_state(st: &DrawState) -> Self {
         Self {
-            color_path: st.color_path.0,
-            alpha_mode: st.alpha_mode.0 & !ALPHA_REF_BITS,
-            fog_mode: st.fog_mode.0,
-            fbz_mode: st.mode.0,
+            color_path: st.color_path.0 & COLOR_PATH_BITS,
+            alpha_mode: st.alpha_mode.0 & ALPHA_MODE_BITS,
+            fog_mode: st.fog_mode.0 & FOG_MODE_BITS,
+            fbz_mode: st.mode.0 & FBZ_MODE_BITS,
         }
     }
 
@@ -136,7 +145,15 @@ macro_rules! specialised {
         /// reference walker.
         pub(crate) fn select<T: TexelSource>(key: RasterKey) -> Walker<T> {
             match (key.color_path, key.alpha_mode, key.fog_mode, key.fbz_mode) {
-                $( ($cp, $am, $fm, $zm) => Fbi::walk::<T, $cp, $am, $fm, $zm>, )*
+                $(
+                    ($cp, $am, $fm, $zm) => Fbi::walk::<
+                        T,
+                        { known_bits(COLOR_PATH_BITS, $cp) },
+                        { known_bits(ALPHA_MODE_BITS, $am) },
+                        { known_bits(FOG_MODE_BITS, $fm) },
+                        { known_bits(FBZ_MODE_BITS, $zm) },
+                    >,
+                )*
                 _ => Fbi::walk::<T, LIVE, LIVE, LIVE, LIVE>,
             }
         }
@@ -199,22 +216,24 @@ mod tests {
     use super::*;
 
     #[test]
-    fn known_values_fold_and_live_passes_through() {
-        assert_eq!(known(LIVE, 0x1234), 0x1234);
-        assert_eq!(known(0x10, 0x10), 0x10);
-        assert_eq!(known_alpha_mode(0x0000_0011, 0x8000_0011), 0x8000_0011);
-        assert_eq!(known_alpha_mode(LIVE, 0xffff_ffff), 0xffff_ffff);
+    fn known_bits_combine_with_live_bits() {
+        assert_eq!(value(LIVE, 0x1234), 0x1234);
+        assert_eq!(value(known_bits(0xff, 0x34), 0x1234), 0x1234);
+        assert_eq!(known_bits(0xff, 0x1234), 0xff_0000_0034);
+        let alpha = known_bits(ALPHA_MODE_BITS, 0x0000_0011);
+        assert_eq!(value(alpha, 0x8000_0011), 0x8000_0011);
+        assert_eq!(value(LIVE, 0xffff_ffff), 0xffff_ffff);
     }
 
     #[test]
     fn table_entries_are_unique_and_keys_are_in_register_range() {
         for (i, e) in SPECIALISED.iter().enumerate() {
             assert!(!SPECIALISED[..i].contains(e), "duplicate entry {e:x?}");
-            // Values the FBI can hold: its write masks, and no alpha_ref bits.
-            assert_eq!(e.0 & !0x0fff_ffff, 0, "{e:x?}");
-            assert_eq!(e.1 & ALPHA_REF_BITS, 0, "{e:x?}");
-            assert_eq!(e.2 & !0x3f, 0, "{e:x?}");
-            assert_eq!(e.3 & !0x001f_ffff, 0, "{e:x?}");
+            // Only bits a key covers, or the entry could never match.
+            assert_eq!(e.0 & !COLOR_PATH_BITS, 0, "{e:x?}");
+            assert_eq!(e.1 & !ALPHA_MODE_BITS, 0, "{e:x?}");
+            assert_eq!(e.2 & !FOG_MODE_BITS, 0, "{e:x?}");
+            assert_eq!(e.3 & !FBZ_MODE_BITS, 0, "{e:x?}");
         }
     }
 }
