@@ -3,8 +3,8 @@
 //! trace is replayed both ways, and every dump the trace takes, the final front, back and
 //! aux buffers and the statistics counters must be bit-identical.
 //!
-//! `perf_tex_heavy` (about a minute per replay on the reference path, texture sampling
-//! bound) runs only in the ignored test: `cargo test -p sst1-board --release --test
+//! `perf_tex_heavy` (about 40 s for both replays in release, texture-sampling bound)
+//! runs only in the ignored test: `cargo test -p sst1-board --release --test
 //! reference_vs_fast -- --ignored`.
 
 use std::path::{Path, PathBuf};
@@ -143,7 +143,7 @@ fn example_traces_identical() {
 }
 
 #[test]
-#[ignore = "about two minutes: the texture-heavy benchmark trace, replayed twice"]
+#[ignore = "about 40 s in release: the texture-heavy benchmark trace, replayed twice"]
 fn slow_traces_identical() {
     let paths = traces("conformance/traces", |name| SLOW.contains(&name));
     assert_eq!(paths.len(), SLOW.len());

@@ -435,6 +435,11 @@ FX_ENTRY void FX_CALL grFlush(void);
 FX_ENTRY FxU32 FX_CALL grGet(FxU32 pname, FxU32 plength, FxI32 *params);
 FX_ENTRY const char * FX_CALL grGetString(FxU32 pname);
 FX_ENTRY FxBool FX_CALL grReset(FxU32 what);
+FX_ENTRY FxI32 FX_CALL grQueryResolutions(const GrResolution *resTemplate, GrResolution *output);
+/* Extensions (as 3dfx's SST-1 Glide 3): guQueryResolutionXYExt,
+ * grGetRegistryOrEnvironmentStringExt, grTexDownloadTableExt, grSetNumPendingBuffers. */
+FX_ENTRY GrProc FX_CALL grGetProcAddress(char *procName);
+FX_ENTRY void FX_CALL grSplash(float x, float y, float width, float height, FxU32 frame);
 
 /* Board and window */
 FX_ENTRY void FX_CALL grSstSelect(int which_sst);

@@ -8,6 +8,40 @@
 extern "C" {
 #endif
 
+/* .3DF texture files and texture tables. */
+typedef struct {
+    FxU32 width, height;
+    int small_lod, large_lod;
+    GrAspectRatio_t aspect_ratio;
+    GrTextureFormat_t format;
+} Gu3dfHeader;
+
+typedef struct {
+    FxU8 yRGB[16];
+    FxI16 iRGB[4][3];
+    FxI16 qRGB[4][3];
+    FxU32 packed_data[12];
+} GuNccTable;
+
+typedef struct {
+    FxU32 data[256];
+} GuTexPalette;
+
+typedef union {
+    GuNccTable nccTable;
+    GuTexPalette palette;
+} GuTexTable;
+
+typedef struct {
+    Gu3dfHeader header;
+    GuTexTable table;
+    void *data;
+    FxU32 mem_required; /* bytes of the mipmap */
+} Gu3dfInfo;
+
+FX_ENTRY FxBool FX_CALL gu3dfGetInfo(const char *filename, Gu3dfInfo *info);
+FX_ENTRY FxBool FX_CALL gu3dfLoad(const char *filename, Gu3dfInfo *data);
+
 /* Entries in a Glide fog table. */
 #define GR_FOG_TABLE_SIZE 64
 

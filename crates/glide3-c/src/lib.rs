@@ -165,8 +165,8 @@ struct Ctx {
     glide: Glide,
     board: SharedBoard,
     recording: Option<Recording>,
-    states: HashMap<usize, GlideState>,
-    layouts: HashMap<usize, VertexLayout>,
+    states: Saved<GlideState>,
+    layouts: Saved<VertexLayout>,
     lfb: [Option<LfbShadow>; 2],
     png: Option<(String, Option<Vec<u32>>)>,
 }
@@ -305,8 +305,8 @@ pub extern "C" fn grGlideInit() {
             glide,
             board,
             recording,
-            states: HashMap::new(),
-            layouts: HashMap::new(),
+            states: Saved::default(),
+            layouts: Saved::default(),
             lfb: [None, None],
             png: png_setting(),
         });
@@ -404,15 +404,28 @@ pub extern "C" fn grErrorSetCallback(f: ErrorFn) {
 
 // ----- queries -----------------------------------------------------------------------
 
-/// `grGet`.
+/// `grGet`: the answers of 3dfx's SST-1 Glide 3 (see `Glide::get`): `plength` bytes
+/// written on success, 1 with `params` untouched for a known selector asked with
+/// another `plength`, 0 for an unknown selector or a null `params`.
 #[no_mangle]
 pub unsafe extern "C" fn grGet(pname: u32, plength: u32, params: *mut i32) -> u32 {
     if params.is_null() {
         return 0;
     }
     let mut buf = [0i32; 4];
-    let n = with(|c| c.glide.get(pname, plength, &mut buf));
-    if n > 0 {
+    let open = CTX.with(|c| c.borrow().is_some());
+    let n = if !open && pname == GR_NUM_BOARDS {
+        // Valid before grGlideInit (Guide chapter 3; diget.c probes the bus): one board.
+        buf[0] = 1;
+        if plength == 4 {
+            4
+        } else {
+            1
+        }
+    } else {
+        with(|c| c.glide.get(pname, plength, &mut buf))
+    };
+    if n == plength {
         let words = (n as usize / 4).min(4);
         // SAFETY: the caller provides plength bytes.
         unsafe { std::ptr::copy_nonoverlapping(buf.as_ptr(), params, words) };
@@ -439,11 +452,154 @@ pub extern "C" fn grGetString(pname: u32) -> *const c_char {
         .as_ptr()
 }
 
-/// `grReset`: resets the statistics counters (accepted, nothing to clear on the bus).
+/// `grReset`: statistics counters or the vertex layout (see `Glide::reset`).
 #[no_mangle]
-pub extern "C" fn grReset(_what: u32) -> FxBool {
-    1
+pub extern "C" fn grReset(what: u32) -> FxBool {
+    with(|c| FxBool::from(c.glide.reset(what)))
 }
+
+/// `GrResolution`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct GrResolution {
+    /// `GR_RESOLUTION_*` or `GR_QUERY_ANY`.
+    pub resolution: i32,
+    /// `GR_REFRESH_*` or `GR_QUERY_ANY`.
+    pub refresh: i32,
+    /// Colour buffers or `GR_QUERY_ANY`.
+    pub num_color_buffers: c_int,
+    /// Aux buffers or `GR_QUERY_ANY`.
+    pub num_aux_buffers: c_int,
+}
+
+/// `grQueryResolutions`: the size in bytes of the matching `GrResolution` list,
+/// written to `output` unless it is null (3dfx diget.c).
+#[no_mangle]
+pub unsafe extern "C" fn grQueryResolutions(
+    template: *const GrResolution,
+    output: *mut GrResolution,
+) -> i32 {
+    // SAFETY: the caller's template (checked for null).
+    let Some(t) = (unsafe { template.as_ref() }).copied() else {
+        return 0;
+    };
+    let any = |v: i32| u32::try_from(v).ok();
+    let list = with(|c| {
+        c.glide.query_resolutions(
+            any(t.resolution),
+            any(t.refresh),
+            any(t.num_color_buffers),
+            any(t.num_aux_buffers),
+        )
+    });
+    if !output.is_null() {
+        for (i, r) in list.iter().enumerate() {
+            // SAFETY: the caller sized `output` from a previous null-output call.
+            unsafe {
+                output.add(i).write(GrResolution {
+                    resolution: r.resolution as i32,
+                    refresh: r.refresh as i32,
+                    num_color_buffers: r.color_buffers as c_int,
+                    num_aux_buffers: r.aux_buffers as c_int,
+                })
+            };
+        }
+    }
+    (list.len() * std::mem::size_of::<GrResolution>()) as i32
+}
+
+/// `guQueryResolutionXYExt` (through `grGetProcAddress`): the size of a resolution.
+/// UNVERIFIED: unknown resolutions give 0 x 0 (3dfx indexes its table unchecked).
+pub unsafe extern "C" fn guQueryResolutionXYExt(res: i32, x: *mut u32, y: *mut u32) {
+    const XY: [(u32, u32); 16] = [
+        (320, 200),
+        (320, 240),
+        (400, 256),
+        (512, 384),
+        (640, 200),
+        (640, 350),
+        (640, 400),
+        (640, 480),
+        (800, 600),
+        (960, 720),
+        (856, 480),
+        (512, 256),
+        (1024, 768),
+        (1280, 1024),
+        (1600, 1200),
+        (400, 300),
+    ];
+    let (w, h) = usize::try_from(res)
+        .ok()
+        .and_then(|i| XY.get(i).copied())
+        .unwrap_or((0, 0));
+    // SAFETY: the caller's output pointers (checked for null).
+    unsafe {
+        if let Some(x) = x.as_mut() {
+            *x = w;
+        }
+        if let Some(y) = y.as_mut() {
+            *y = h;
+        }
+    }
+}
+
+/// `grGetRegistryOrEnvironmentStringExt` (through `grGetProcAddress`): `getenv`.
+pub unsafe extern "C" fn grGetRegistryOrEnvironmentStringExt(name: *const c_char) -> *mut c_char {
+    if name.is_null() {
+        return std::ptr::null_mut();
+    }
+    // SAFETY: the caller's NUL-terminated name.
+    let key = unsafe { CStr::from_ptr(name) }
+        .to_string_lossy()
+        .into_owned();
+    let Ok(value) = std::env::var(&key) else {
+        return std::ptr::null_mut();
+    };
+    // Kept alive for the process, like the environment string 3dfx returns.
+    thread_local! {
+        static ENV: RefCell<HashMap<String, CString>> = RefCell::new(HashMap::new());
+    }
+    ENV.with(|e| {
+        let mut e = e.borrow_mut();
+        let s = e
+            .entry(key)
+            .or_insert_with(|| CString::new(value.replace('\0', "")).unwrap_or_default());
+        s.as_ptr() as *mut c_char
+    })
+}
+
+/// `grSetNumPendingBuffers` (through `grGetProcAddress`): the number of swaps
+/// `grBufferSwap` lets queue up. Our swaps never wait, so it is accepted and unused.
+pub extern "C" fn grSetNumPendingBuffers(_n: i32) {}
+
+/// `GrProc`.
+pub type GrProc = Option<unsafe extern "C" fn() -> c_int>;
+
+/// `grGetProcAddress`: the extensions of 3dfx's SST-1 Glide 3 (diget.c
+/// `_extensionTable`, without the texus2 quantizers); null for any other name.
+#[no_mangle]
+pub unsafe extern "C" fn grGetProcAddress(name: *const c_char) -> GrProc {
+    if name.is_null() {
+        return None;
+    }
+    // SAFETY: the caller's NUL-terminated name.
+    let name = unsafe { CStr::from_ptr(name) }.to_bytes();
+    let p: *const () = match name {
+        b"guQueryResolutionXYExt" => guQueryResolutionXYExt as *const (),
+        b"grGetRegistryOrEnvironmentStringExt" => grGetRegistryOrEnvironmentStringExt as *const (),
+        b"grTexDownloadTableExt" => grTexDownloadTableExt as *const (),
+        b"grSetNumPendingBuffers" => grSetNumPendingBuffers as *const (),
+        _ => return None,
+    };
+    // SAFETY: GrProc is an untyped function pointer; the caller casts it back to the
+    // extension's real signature, as with 3dfx's library.
+    Some(unsafe { std::mem::transmute::<*const (), unsafe extern "C" fn() -> c_int>(p) })
+}
+
+/// `grSplash`: 3dfx draws its animated logo; the emulation shows nothing.
+#[no_mangle]
+pub extern "C" fn grSplash(_x: f32, _y: f32, _w: f32, _h: f32, _frame: u32) {}
 
 // ----- state ------------------------------------------------------------------------
 
@@ -580,41 +736,110 @@ pub unsafe extern "C" fn grLoadGammaTable(n: u32, r: *const u32, g: *const u32, 
     with(|c| c.glide.load_gamma_table(r, g, b));
 }
 
-/// `grGlideGetState`: the state is kept on our side, keyed by the buffer address.
+/// Saved states or layouts. The caller's buffer (`GR_GLIDE_STATE_SIZE` = 588 or
+/// `GR_GLIDE_VERTEXLAYOUT_SIZE` = 100 bytes) receives a tag and an id; the value
+/// stays here. Copies of a buffer restore the same value, and saving again into a
+/// tagged buffer replaces its entry instead of adding one.
+struct Saved<T> {
+    map: HashMap<u32, T>,
+    next: u32,
+}
+
+impl<T> Default for Saved<T> {
+    fn default() -> Self {
+        Self {
+            map: HashMap::new(),
+            next: 1,
+        }
+    }
+}
+
+/// "G3SV": marks a buffer filled by `grGlideGetState`/`grGlideGetVertexLayout`.
+const SAVED_TAG: u32 = 0x4733_5356;
+
+impl<T> Saved<T> {
+    /// The id tagged in `buf`, if any.
+    unsafe fn id(buf: *const c_void) -> Option<u32> {
+        if buf.is_null() {
+            return None;
+        }
+        let w = buf as *const u32;
+        // SAFETY: the caller's buffer holds at least 8 bytes (both sizes exceed it).
+        let (tag, id) = unsafe { (w.read_unaligned(), w.add(1).read_unaligned()) };
+        (tag == SAVED_TAG).then_some(id)
+    }
+
+    unsafe fn save(&mut self, buf: *mut c_void, value: T) {
+        if buf.is_null() {
+            return;
+        }
+        // SAFETY: forwarded buffer.
+        let id = match unsafe { Self::id(buf) } {
+            Some(id) if self.map.contains_key(&id) => id,
+            _ => {
+                self.next = self.next.wrapping_add(1);
+                self.next
+            }
+        };
+        self.map.insert(id, value);
+        let w = buf as *mut u32;
+        // SAFETY: the caller's buffer holds at least 8 bytes.
+        unsafe {
+            w.write_unaligned(SAVED_TAG);
+            w.add(1).write_unaligned(id);
+        }
+    }
+
+    unsafe fn get(&self, buf: *const c_void) -> Option<&T> {
+        // SAFETY: forwarded buffer.
+        self.map.get(&unsafe { Self::id(buf) }?)
+    }
+}
+
+/// `grGlideGetState`.
 #[no_mangle]
-pub extern "C" fn grGlideGetState(state: *mut c_void) {
+pub unsafe extern "C" fn grGlideGetState(state: *mut c_void) {
     with(|c| {
         let s = c.glide.get_state();
-        c.states.insert(state as usize, s);
+        // SAFETY: a GR_GLIDE_STATE_SIZE buffer.
+        unsafe { c.states.save(state, s) };
     });
 }
 
 /// `grGlideSetState`.
 #[no_mangle]
-pub extern "C" fn grGlideSetState(state: *const c_void) {
-    with(|c| match c.states.get(&(state as usize)).cloned() {
-        Some(s) => c.glide.set_state(&s),
-        None => c
-            .glide
-            .report_error("grGlideSetState: state was not saved by grGlideGetState"),
+pub unsafe extern "C" fn grGlideSetState(state: *const c_void) {
+    with(|c| {
+        // SAFETY: a buffer filled by grGlideGetState.
+        match unsafe { c.states.get(state) }.cloned() {
+            Some(s) => c.glide.set_state(&s),
+            None => c
+                .glide
+                .report_error("grGlideSetState: state was not saved by grGlideGetState"),
+        }
     });
 }
 
 /// `grGlideGetVertexLayout`.
 #[no_mangle]
-pub extern "C" fn grGlideGetVertexLayout(layout: *mut c_void) {
+pub unsafe extern "C" fn grGlideGetVertexLayout(layout: *mut c_void) {
     with(|c| {
         let l = c.glide.get_vertex_layout();
-        c.layouts.insert(layout as usize, l);
+        // SAFETY: a GR_GLIDE_VERTEXLAYOUT_SIZE buffer.
+        unsafe { c.layouts.save(layout, l) };
     });
 }
 
 /// `grGlideSetVertexLayout`.
 #[no_mangle]
-pub extern "C" fn grGlideSetVertexLayout(layout: *const c_void) {
+pub unsafe extern "C" fn grGlideSetVertexLayout(layout: *const c_void) {
     with(|c| {
-        if let Some(l) = c.layouts.get(&(layout as usize)).copied() {
-            c.glide.set_vertex_layout(&l);
+        // SAFETY: a buffer filled by grGlideGetVertexLayout.
+        match unsafe { c.layouts.get(layout) }.copied() {
+            Some(l) => c.glide.set_vertex_layout(&l),
+            None => c.glide.report_error(
+                "grGlideSetVertexLayout: layout was not saved by grGlideGetVertexLayout",
+            ),
         }
     });
 }
@@ -1204,4 +1429,126 @@ pub unsafe extern "C" fn guFogGenerateExp2(t: *mut u8, density: f32) {
 pub unsafe extern "C" fn guFogGenerateLinear(t: *mut u8, near: f32, far: f32) {
     // SAFETY: caller's 64-entry table.
     unsafe { fog_out(t, |x| glide::get::fog_generate_linear(x, near, far)) };
+}
+
+// ----- .3DF files -------------------------------------------------------------------
+
+/// `Gu3dfHeader`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct Gu3dfHeader {
+    /// Width of the largest level.
+    pub width: u32,
+    /// Height of the largest level.
+    pub height: u32,
+    /// `GR_LOD_LOG2_*` of the smallest level.
+    pub small_lod: c_int,
+    /// `GR_LOD_LOG2_*` of the largest level.
+    pub large_lod: c_int,
+    /// `GR_ASPECT_LOG2_*`.
+    pub aspect_ratio: i32,
+    /// `GR_TEXFMT_*`.
+    pub format: i32,
+}
+
+/// `Gu3dfInfo`: the header, the table (`GuTexTable`: a `GuNccTable` or a
+/// `GuTexPalette` in 1024 bytes), the caller's texel buffer and its size.
+#[repr(C)]
+#[derive(Debug)]
+pub struct Gu3dfInfo {
+    /// Parsed header.
+    pub header: Gu3dfHeader,
+    /// `GuTexTable` storage.
+    pub table: [u32; 256],
+    /// Texel buffer of `mem_required` bytes, provided by the caller for `gu3dfLoad`.
+    pub data: *mut c_void,
+    /// Bytes of all the levels.
+    pub mem_required: u32,
+}
+
+/// Reads a whole file named by a C string.
+unsafe fn read_file(name: *const c_char) -> Option<Vec<u8>> {
+    if name.is_null() {
+        return None;
+    }
+    // SAFETY: the caller's NUL-terminated file name.
+    let name = unsafe { CStr::from_ptr(name) };
+    std::fs::read(name.to_str().ok()?).ok()
+}
+
+/// `gu3dfGetInfo`: fills `info->header` and `info->mem_required`.
+#[no_mangle]
+pub unsafe extern "C" fn gu3dfGetInfo(filename: *const c_char, info: *mut Gu3dfInfo) -> FxBool {
+    // SAFETY: the caller's file name and Gu3dfInfo (checked for null).
+    let (Some(file), Some(info)) = (unsafe { read_file(filename) }, unsafe { info.as_mut() })
+    else {
+        return 0;
+    };
+    let Ok(i) = glide::g3df::get_info(&file) else {
+        return 0;
+    };
+    info.header = Gu3dfHeader {
+        width: i.header.width,
+        height: i.header.height,
+        small_lod: i.header.small_lod as c_int,
+        large_lod: i.header.large_lod as c_int,
+        aspect_ratio: i.header.aspect,
+        format: i.header.format as i32,
+    };
+    info.mem_required = i.mem_required;
+    1
+}
+
+/// `gu3dfLoad`: the table into `info->table` and the texels into `info->data`
+/// (`info->mem_required` bytes; 16-bit texels in host order).
+#[no_mangle]
+pub unsafe extern "C" fn gu3dfLoad(filename: *const c_char, info: *mut Gu3dfInfo) -> FxBool {
+    // SAFETY: the caller's file name and Gu3dfInfo (checked for null).
+    let (Some(file), Some(info)) = (unsafe { read_file(filename) }, unsafe { info.as_mut() })
+    else {
+        return 0;
+    };
+    if info.data.is_null() {
+        return 0;
+    }
+    let h = info.header;
+    let header = glide::g3df::Gu3dfHeader {
+        width: h.width,
+        height: h.height,
+        small_lod: h.small_lod.clamp(0, 8) as u32,
+        large_lod: h.large_lod.clamp(0, 8) as u32,
+        aspect: h.aspect_ratio,
+        format: h.format.max(0) as u32,
+    };
+    let Ok((table, data)) = glide::g3df::load(&file, &header) else {
+        return 0;
+    };
+    match table {
+        glide::g3df::TexTable::None => {}
+        glide::g3df::TexTable::Palette(p) => info.table = *p,
+        glide::g3df::TexTable::Ncc(n) => {
+            // GuNccTable: yRGB[16] u8, iRGB[4][3] i16, qRGB[4][3] i16, packed_data[12].
+            let mut bytes = Vec::with_capacity(112);
+            bytes.extend_from_slice(&n.y);
+            for v in n.i.iter().chain(n.q.iter()).flatten() {
+                bytes.extend_from_slice(&v.to_ne_bytes());
+            }
+            for w in n.packed {
+                bytes.extend_from_slice(&w.to_ne_bytes());
+            }
+            for (dst, src) in info.table.iter_mut().zip(bytes.chunks_exact(4)) {
+                *dst = u32::from_ne_bytes([src[0], src[1], src[2], src[3]]);
+            }
+        }
+    }
+    // SAFETY: the caller's buffer holds mem_required bytes, which is `data.len()`
+    // for the header gu3dfGetInfo filled.
+    unsafe {
+        std::ptr::copy_nonoverlapping(
+            data.as_ptr(),
+            info.data as *mut u8,
+            data.len().min(info.mem_required as usize),
+        )
+    };
+    1
 }

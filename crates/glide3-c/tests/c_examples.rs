@@ -196,6 +196,27 @@ fn lfb_overlay() {
     check("lfb_overlay");
 }
 
+/// grGet, grQueryResolutions, grGetProcAddress, grReset, state save/restore through
+/// copied buffers, table downloads and .3df files from C (tests/api.c prints "ok").
+#[test]
+fn api_queries_and_3df_files() {
+    let out = std::env::temp_dir().join(format!("glide3-c-test-{}-api", std::process::id()));
+    std::fs::create_dir_all(&out).expect("temp dir");
+    let exe = build("tests/api", &out);
+    let run = Command::new(&exe)
+        .arg(&out)
+        .env("LD_LIBRARY_PATH", lib_dir())
+        .output()
+        .expect("run api");
+    assert_eq!(
+        String::from_utf8_lossy(&run.stdout),
+        "ok\n",
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(run.status.success());
+}
+
 /// Null vertex pointers, an out-of-range enum and a texture that does not fit reach the
 /// error callback with the call's name and leave the counters untouched.
 #[test]

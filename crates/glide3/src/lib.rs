@@ -23,6 +23,7 @@
 mod aa;
 pub mod consts;
 pub mod draw;
+pub mod g3df;
 pub mod get;
 mod hw;
 pub mod init;
@@ -30,6 +31,7 @@ pub mod lfb;
 pub mod state;
 pub mod tex;
 pub mod video;
+mod x87;
 
 use consts::*;
 pub use draw::VertexLayout;
@@ -221,6 +223,48 @@ impl Glide {
             tmu_rev: self.board.tmu_revision,
             tmu_ram: self.board.tmu_mb,
         }
+    }
+
+    /// `grQueryResolutions` for this board (see [`video::query_resolutions`]).
+    pub fn query_resolutions(
+        &self,
+        resolution: Option<u32>,
+        refresh: Option<u32>,
+        color_buffers: Option<u32>,
+        aux_buffers: Option<u32>,
+    ) -> Vec<video::Resolution> {
+        video::query_resolutions(
+            self.board.fbi_mb,
+            resolution,
+            refresh,
+            color_buffers,
+            aux_buffers,
+        )
+    }
+
+    /// `grReset`: clear counters or the vertex layout; false for other selectors.
+    /// Source: diget.c. `GR_STATS_TRIANGLES` also clears the line count (3dfx's
+    /// `_grResetTriStats`); `GR_STATS_PIXELS` writes `nopCMD` = 1, which clears the
+    /// chip's pixel counters (spec 5.22); `GR_VERTEX_PARAMETER` disables
+    /// every vertex parameter. UNVERIFIED: 3dfx also leaves its parameter list stale
+    /// until the next `grVertexLayout`; we rebuild it at once.
+    pub fn reset(&mut self, what: u32) -> bool {
+        match what {
+            GR_STATS_POINTS => self.stats.points = 0,
+            GR_STATS_LINES => self.stats.lines = 0,
+            GR_STATS_PIXELS => self.hw.w(NOP_CMD, 1),
+            GR_STATS_TRIANGLES => {
+                self.stats.lines = 0;
+                self.stats.triangles_in = 0;
+                self.stats.triangles_drawn = 0;
+            }
+            GR_VERTEX_PARAMETER => {
+                self.layout = VertexLayout::default();
+                self.update_param_index();
+            }
+            _ => return false,
+        }
+        true
     }
 
     /// `grSstSelect`: only board 0 exists.

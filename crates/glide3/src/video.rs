@@ -296,6 +296,82 @@ pub(crate) struct Mode {
     pub monitor: Monitor,
 }
 
+/// One `GrResolution` entry: a mode `grSstWinOpen` can open, as `grQueryResolutions`
+/// lists it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Resolution {
+    /// `GR_RESOLUTION_*`.
+    pub resolution: u32,
+    /// `GR_REFRESH_*`.
+    pub refresh: u32,
+    /// Colour buffers (2 or 3).
+    pub color_buffers: u32,
+    /// Auxiliary buffers (0 or 1).
+    pub aux_buffers: u32,
+}
+
+/// Pixels per buffer of each resolution/refresh pair `grQueryResolutions` offers
+/// (0: not offered), indexed `[GR_RESOLUTION_*][GR_REFRESH_*]`. Source: 3dfx's
+/// SST-1 Glide 3 diget.c `_grResolutionRefresh`; it lists fewer modes than
+/// `grSstWinOpen` accepts (no 512x256, 856x480, 960x720, 800x600 at 120 Hz).
+const RESOLUTION_REFRESH: [[u32; 9]; 16] = {
+    let mut t = [[0u32; 9]; 16];
+    // Refresh order: 60, 70, 72, 75, 80, 90, 100, 85, 120 Hz.
+    t[GR_RESOLUTION_512x384 as usize] = [196608, 0, 196608, 196608, 0, 0, 0, 196608, 196608];
+    t[GR_RESOLUTION_640x400 as usize] = [0, 256000, 0, 256000, 0, 0, 0, 256000, 256000];
+    t[GR_RESOLUTION_640x480 as usize] = [307200, 0, 0, 307200, 0, 0, 0, 307200, 307200];
+    t[GR_RESOLUTION_800x600 as usize] = [480000, 0, 0, 480000, 0, 0, 0, 480000, 0];
+    t
+};
+
+/// 4 KiB pages one buffer of each resolution occupies (65536: never fits). Source:
+/// diget.c `_grMemOffset`.
+const MEM_OFFSET: [u32; 16] = [
+    65536, 65536, 65536, 96, 65536, 65536, 150, 150, 247, 338, 210, 64, 65536, 65536, 65536, 65536,
+];
+
+/// `grQueryResolutions`: every (resolution, refresh, colour buffers, aux buffers)
+/// combination matching `template` (`None` = `GR_QUERY_ANY`; out-of-range values also
+/// mean "any", as in diget.c) that fits in `fbi_mb` MiB: `pixels * 2 * buffers <
+/// memory` and `buffers * pages < memory pages`, in 3dfx's loop order.
+pub fn query_resolutions(
+    fbi_mb: u32,
+    resolution: Option<u32>,
+    refresh: Option<u32>,
+    color_buffers: Option<u32>,
+    aux_buffers: Option<u32>,
+) -> Vec<Resolution> {
+    let pick = |v: Option<u32>, lo: u32, hi: u32| match v {
+        Some(v) if (lo..=hi).contains(&v) => v..=v,
+        _ => lo..=hi,
+    };
+    let fbmem = fbi_mb << 20;
+    let pages = fbmem >> 12;
+    let mut out = Vec::new();
+    for res in pick(resolution, 0, 15) {
+        for rr in pick(refresh, 0, 8) {
+            let px = RESOLUTION_REFRESH[res as usize][rr as usize];
+            if px == 0 {
+                continue;
+            }
+            for col in pick(color_buffers, 2, 3) {
+                for aux in pick(aux_buffers, 0, 1) {
+                    let n = col + aux;
+                    if px * 2 * n < fbmem && n * MEM_OFFSET[res as usize] < pages {
+                        out.push(Resolution {
+                            resolution: res,
+                            refresh: rr,
+                            color_buffers: col,
+                            aux_buffers: aux,
+                        });
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
 /// Resolve a `GR_RESOLUTION_*` / `GR_REFRESH_*` pair the way the SST-1 init code does
 /// (unsupported refresh rates fall back to that resolution's default). `None` for
 /// resolutions the SST-1 cannot display.
