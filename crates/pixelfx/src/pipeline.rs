@@ -218,21 +218,28 @@ impl Fbi {
             Source::Lfb(c) => c,
         };
 
-        // --- chroma key, alpha mask, alpha test ---
+        // --- chroma key, alpha mask ---
         if mode.enable_chromakey() && color_path::chroma_killed(other, st.chroma_key) {
             return Err(Kill::Chroma);
         }
         if mode.enable_alpha_mask() && other.a & 1 == 0 {
             return Err(Kill::AlphaMask);
         }
-        if am.alpha_test_enable() && !alpha_test::test(am.alpha_function(), other.a, am.alpha_ref())
-        {
+        let test_alpha = |a: u8| {
+            !am.alpha_test_enable() || alpha_test::test(am.alpha_function(), a, am.alpha_ref())
+        };
+        let test_combined = matches!(source, Source::Triangle)
+            && profile.alpha_test_input == crate::profile::AlphaTestInput::Combined;
+        if !test_combined && !test_alpha(other.a) {
             return Err(Kill::AlphaFunc);
         }
 
-        // --- combine ---
+        // --- combine, alpha test ---
         let local = color_path::select_local(color_path, &inputs);
         let combined = color_path::combine(color_path, other, local, texel.a);
+        if test_combined && !test_alpha(combined.a) {
+            return Err(Kill::AlphaFunc);
+        }
 
         // --- fog ---
         let fog_input = fog::FogInput {

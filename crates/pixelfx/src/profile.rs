@@ -54,6 +54,18 @@ pub enum LfbWordSwap {
     Always,
 }
 
+/// Which alpha the alpha test (spec 5.18.1) compares for triangles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum AlphaTestInput {
+    /// The alpha combine unit's output (MAME: after `combine_color`; 86Box: `src_a`
+    /// after the combine). `stress_random` depth: 2224 pixels where MAME and 86Box agree
+    /// against DOSBox Staging on exactly this.
+    #[default]
+    Combined,
+    /// `a_other`, before the alpha combine unit (DOSBox Staging).
+    AOther,
+}
+
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct PixelProfile {
@@ -64,6 +76,7 @@ pub struct PixelProfile {
     pub pattern_row: PatternRow,
     pub lfb_word_swap: LfbWordSwap,
     pub float_overflow: FloatOverflow,
+    pub alpha_test_input: AlphaTestInput,
     pub dither_2x2: DitherMatrix2x2,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,
