@@ -458,34 +458,51 @@ pub fn remap_offset(offset: u32) -> u32 {
 /// (`fbzMode = FbzMode { raw: 0x00000670, ..., depth_function: LessEqual, ... }`);
 /// other registers print as `name = 0x12345678`.
 pub fn decode(offset: u32, value: u32) -> String {
+    describe(offset, value, false)
+}
+
+/// As [`decode`], with one field per line (for people rather than logs).
+pub fn decode_pretty(offset: u32, value: u32) -> String {
+    describe(offset, value, true)
+}
+
+fn describe(offset: u32, value: u32, pretty: bool) -> String {
+    fn show(v: &dyn core::fmt::Debug, pretty: bool) -> String {
+        if pretty {
+            format!("{v:#?}")
+        } else {
+            format!("{v:?}")
+        }
+    }
     let name = name_of(offset);
+    let p = pretty;
     let fields = match offset & 0x3fc {
-        addr::STATUS => format!("{:?}", Status(value)),
-        addr::FBZ_COLOR_PATH => format!("{:?}", FbzColorPath(value)),
-        addr::FOG_MODE => format!("{:?}", FogMode(value)),
-        addr::ALPHA_MODE => format!("{:?}", AlphaMode(value)),
-        addr::FBZ_MODE => format!("{:?}", FbzMode(value)),
-        addr::LFB_MODE => format!("{:?}", LfbMode(value)),
-        addr::CLIP_LEFT_RIGHT => format!("{:?}", ClipLeftRight(value)),
-        addr::CLIP_LOW_Y_HIGH_Y => format!("{:?}", ClipLowYHighY(value)),
-        addr::ZA_COLOR => format!("{:?}", ZaColor(value)),
-        addr::CHROMA_KEY => format!("{:?}", ChromaKey(value)),
-        addr::STIPPLE => format!("{:?}", Stipple(value)),
-        addr::COLOR0 | addr::COLOR1 => format!("{:?}", Rgba::from_argb(value)),
-        addr::FBI_INIT4 => format!("{:?}", FbiInit4(value)),
-        addr::BACK_PORCH => format!("{:?}", BackPorch(value)),
-        addr::VIDEO_DIMENSIONS => format!("{:?}", VideoDimensions(value)),
-        addr::FBI_INIT0 => format!("{:?}", FbiInit0(value)),
-        addr::FBI_INIT1 => format!("{:?}", FbiInit1(value)),
-        addr::FBI_INIT2 => format!("{:?}", FbiInit2(value)),
-        addr::FBI_INIT3 => format!("{:?}", FbiInit3(value)),
-        addr::H_SYNC => format!("{:?}", HSync(value)),
-        addr::V_SYNC => format!("{:?}", VSync(value)),
-        addr::TEXTURE_MODE => format!("{:?}", TextureMode(value)),
-        addr::T_LOD => format!("{:?}", TLod(value)),
-        addr::T_DETAIL => format!("{:?}", TDetail(value)),
-        addr::TREX_INIT0 => format!("{:?}", TrexInit0(value)),
-        addr::TREX_INIT1 => format!("{:?}", TrexInit1(value)),
+        addr::STATUS => show(&Status(value), p),
+        addr::FBZ_COLOR_PATH => show(&FbzColorPath(value), p),
+        addr::FOG_MODE => show(&FogMode(value), p),
+        addr::ALPHA_MODE => show(&AlphaMode(value), p),
+        addr::FBZ_MODE => show(&FbzMode(value), p),
+        addr::LFB_MODE => show(&LfbMode(value), p),
+        addr::CLIP_LEFT_RIGHT => show(&ClipLeftRight(value), p),
+        addr::CLIP_LOW_Y_HIGH_Y => show(&ClipLowYHighY(value), p),
+        addr::ZA_COLOR => show(&ZaColor(value), p),
+        addr::CHROMA_KEY => show(&ChromaKey(value), p),
+        addr::STIPPLE => show(&Stipple(value), p),
+        addr::COLOR0 | addr::COLOR1 => show(&Rgba::from_argb(value), p),
+        addr::FBI_INIT4 => show(&FbiInit4(value), p),
+        addr::BACK_PORCH => show(&BackPorch(value), p),
+        addr::VIDEO_DIMENSIONS => show(&VideoDimensions(value), p),
+        addr::FBI_INIT0 => show(&FbiInit0(value), p),
+        addr::FBI_INIT1 => show(&FbiInit1(value), p),
+        addr::FBI_INIT2 => show(&FbiInit2(value), p),
+        addr::FBI_INIT3 => show(&FbiInit3(value), p),
+        addr::H_SYNC => show(&HSync(value), p),
+        addr::V_SYNC => show(&VSync(value), p),
+        addr::TEXTURE_MODE => show(&TextureMode(value), p),
+        addr::T_LOD => show(&TLod(value), p),
+        addr::T_DETAIL => show(&TDetail(value), p),
+        addr::TREX_INIT0 => show(&TrexInit0(value), p),
+        addr::TREX_INIT1 => show(&TrexInit1(value), p),
         _ => format!("{value:#010x}"),
     };
     format!("{name} = {fields}")
@@ -495,9 +512,11 @@ pub fn decode(offset: u32, value: u32) -> String {
 mod tests {
     use super::*;
 
+    // The register tables of spec section 5, copied from
+    // shared/reference/sst-1-spec-rev1.61.md so that the crate tests stand alone.
     const SPEC: &str = include_str!(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/reference/sst-1-spec-rev1.61.md"
+        "/data/spec-register-tables.md"
     ));
 
     /// One row of a spec register table; a range row (`0x160(352)<br>to<br>0x1dc(476)`)

@@ -10,7 +10,7 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
 use sst1_board::{Board, BufferKind};
-use sst1_regs::{addr, map, RegisterBus};
+use sst1_regs::map;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
     encode_binary, execute, load_trace, read_trace, rgb565_to_rgb8, write_dumps, write_text, Dump,
@@ -79,7 +79,19 @@ enum Command {
     },
 }
 
+/// Let a closed output pipe (`voodoo info t.trace | head`) end the process quietly, as
+/// other command-line tools do, instead of panicking in `println!`.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at start-up, before any thread exists; SIG_DFL is a valid
+    // disposition for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    restore_sigpipe();
     let result = match Cli::parse().command {
         Command::Replay {
             trace,
@@ -160,7 +172,7 @@ fn replay(
     stats_json: Option<&Path>,
 ) -> Result<(), String> {
     let trace = load_trace(path).map_err(|e| e.to_string())?;
-    let (mut board, dumps) = run(&trace);
+    let (board, dumps) = run(&trace);
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for written in write_dumps(&dumps, out).map_err(|e| e.to_string())? {
         println!("wrote {}", written.display());
@@ -249,7 +261,11 @@ fn reg(register: &str, value: &str) -> Result<(), String> {
             .ok_or_else(|| format!("no register named `{register}`"))?,
     };
     let value = parse_number(value).ok_or_else(|| format!("`{value}` is not a 32-bit number"))?;
-    println!("{:#05x} {}", offset & 0x3fc, map::decode(offset, value));
+    println!(
+        "{:#05x} {}",
+        offset & 0x3fc,
+        map::decode_pretty(offset, value)
+    );
     Ok(())
 }
 
