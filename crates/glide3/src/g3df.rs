@@ -187,11 +187,11 @@ pub fn get_info(file: &[u8]) -> Result<Gu3dfInfo, Error3df> {
     let num = |i: usize| c_int(t[i]).ok_or(Error3df::Header);
     let (small, large, aw, ah) = (num(5)?, num(6)?, num(9)?, num(10)?);
     // aspect: width:height of 1, 2, 4 or 8 to 1 either way (width first as in 3dfx).
-    let aspect = (0..4)
+    let aspect: i32 = (0..4)
         .find(|&i| aw > 0 && (aw << i) == ah)
         .map(|i| -i)
         .or_else(|| (0..4).find(|&i| ah > 0 && (ah << i) == aw))
-        .ok_or(Error3df::AspectRatio)? as i32;
+        .ok_or(Error3df::AspectRatio)?;
     let (small_lod, large_lod) = (lod_log2(small)?, lod_log2(large)?);
     let (width, height) = if aw >= ah {
         (large, large / aw)
