@@ -207,9 +207,12 @@ impl TriangleParams {
         // Z uses a 64-bit product so that large gradients do not wrap before the shift.
         let dz = ((dy as i64 * self.dzdy as i64) >> 4) + ((dx as i64 * self.dzdx as i64) >> 4);
         self.start_z = self.start_z.wrapping_add(dz as i32);
-        self.start_w = self
-            .start_w
-            .wrapping_add((dy as i64 * self.dwdy).wrapping_add(dx as i64 * self.dwdx) >> 4);
+        self.start_w = self.start_w.wrapping_add(
+            (dy as i64)
+                .wrapping_mul(self.dwdy)
+                .wrapping_add((dx as i64).wrapping_mul(self.dwdx))
+                >> 4,
+        );
         (dx, dy)
     }
 }

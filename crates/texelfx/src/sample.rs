@@ -15,18 +15,10 @@
 //! Source: MAME `rasterizer_texture::fetch_texel` (DOSBox Staging `TEXTURE_PIPELINE` is the
 //! older form of the same code; 86Box uses the same 4-bit weights).
 
-use crate::format::Lookups;
+use crate::format::{self, Decode};
 use crate::lod::{f64_to_i32_x86, pixel_lod, PixelLod};
-use crate::{BilinearPrecision, CoordRounding, LodZeroFrac, Tmu};
+use crate::{BilinearPrecision, CoordRounding, LodZeroFrac, PerspDivide, Tmu};
 use sst1_regs::{TLod, TextureMode};
-
-/// What decoding the texels of one fetch needs, gathered once per pixel.
-struct Fetch<'a> {
-    /// `tformat`.
-    format: u32,
-    /// Tables for the formats that use them.
-    lookups: Lookups<'a>,
-}
 
 /// The result of one texel fetch.
 pub(crate) struct Sample {
@@ -46,7 +38,15 @@ impl Tmu {
         let mode = TextureMode(self.texture_mode);
         let persp = mode.tpersp_st();
         let floor = self.profile.coord_rounding == CoordRounding::Floor;
-        let (mut s, mut t) = if persp {
+        let (mut s, mut t) = if persp && self.profile.persp_divide == PerspDivide::DosboxReciprocal
+        {
+            // Source: DOSBox Staging `TEXTURE_PIPELINE`: S * (1/W as .15) >> 29 gives 14.18,
+            // truncated to 32 bits; >> 10 more gives the 24.8 used here (a floor, as
+            // DOSBox's later shifts are).
+            let (oow, _) = crate::lod::reciplog_dosbox(iterw);
+            let div = |v: i64| (oow.wrapping_mul(v) >> 29) as i32 >> 10;
+            (div(iters), div(itert))
+        } else if persp {
             let recip = 256.0 / iterw as f64;
             let div = |v: i64| {
                 let q = v as f64 * recip;
@@ -101,14 +101,12 @@ impl Tmu {
         } else {
             !mode.tminfilter()
         };
-        let fetch = Fetch {
-            format: mode.format() as u32,
-            lookups: self.lookups(),
-        };
-        let texel = if point {
-            self.point(&fetch, ilod, s >> (ilod + 8), t >> (ilod + 8))
-        } else {
-            self.bilinear(&fetch, ilod, (s >> ilod) - 0x80, (t >> ilod) - 0x80)
+        let texel = match self.decode {
+            Decode::Lut8 => self.filter::<{ Decode::LUT8 }>(point, ilod, s, t),
+            Decode::LutLo16 => self.filter::<{ Decode::LUT_LO16 }>(point, ilod, s, t),
+            Decode::Rgb565 => self.filter::<{ Decode::RGB565 }>(point, ilod, s, t),
+            Decode::Argb1555 => self.filter::<{ Decode::ARGB1555 }>(point, ilod, s, t),
+            Decode::Argb4444 => self.filter::<{ Decode::ARGB4444 }>(point, ilod, s, t),
         };
         let zero_frac =
             self.profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
@@ -120,20 +118,42 @@ impl Tmu {
         }
     }
 
-    /// Reads and decodes texel `(s, t)` of a LOD; coordinates are already in range.
-    fn read(&self, f: &Fetch<'_>, lod: usize, s: u32, t: u32) -> [u8; 4] {
-        let addr = self.layout.texel_addr(lod, s, t);
-        let byte = |a: u32| u32::from(self.ram[(a & self.ram_mask) as usize]);
-        let raw = if self.layout.bpp_shift == 0 {
-            byte(addr)
+    /// Point sampling or bilinear filtering of 24.8 LOD-0 coordinates at LOD `lod`, for
+    /// texels decoded as `D` (a [`Decode`] constant, so that each format gets its own
+    /// copy of the loop without a per-texel branch).
+    #[inline]
+    fn filter<const D: u8>(&self, point: bool, lod: usize, s: i32, t: i32) -> [u8; 4] {
+        let texel = if point {
+            self.point::<D>(lod, s >> (lod + 8), t >> (lod + 8))
         } else {
-            byte(addr) | byte(addr.wrapping_add(1)) << 8
+            self.bilinear::<D>(
+                lod,
+                (s >> lod).wrapping_sub(0x80),
+                (t >> lod).wrapping_sub(0x80),
+            )
         };
-        crate::format::decode(f.format, raw, &f.lookups)
+        format::to_rgba(texel)
+    }
+
+    /// Reads and decodes the texel at byte address `addr` (not yet wrapped), as ARGB.
+    #[inline(always)]
+    fn fetch<const D: u8>(&self, addr: u32) -> u32 {
+        let byte = |a: u32| u32::from(self.ram[(a & self.ram_mask) as usize]);
+        if D == Decode::LUT8 {
+            return self.texel_lut[byte(addr) as usize];
+        }
+        let raw = byte(addr) | byte(addr.wrapping_add(1)) << 8;
+        match D {
+            Decode::RGB565 => format::rgb565(raw),
+            Decode::ARGB1555 => format::argb1555(raw),
+            Decode::ARGB4444 => format::argb4444(raw),
+            _ => (self.texel_lut[(raw & 0xff) as usize] & 0x00ff_ffff) | (raw >> 8) << 24,
+        }
     }
 
     /// Point sampling of integer texel coordinates.
-    fn point(&self, f: &Fetch<'_>, lod: usize, s: i32, t: i32) -> [u8; 4] {
+    #[inline(always)]
+    fn point<const D: u8>(&self, lod: usize, s: i32, t: i32) -> u32 {
         let smax = self.layout.smax(lod) as i32;
         let tmax = self.layout.tmax(lod) as i32;
         let mut s = s;
@@ -144,39 +164,60 @@ impl Tmu {
         if TextureMode(self.texture_mode).tclampt() {
             t = t.clamp(0, tmax);
         }
-        self.read(f, lod, (s & smax) as u32, (t & tmax) as u32)
+        self.fetch::<D>(
+            self.layout
+                .texel_addr(lod, (s & smax) as u32, (t & tmax) as u32),
+        )
     }
 
     /// Bilinear filtering; `s`, `t` are 24.8 at this LOD with half a texel subtracted.
-    fn bilinear(&self, f: &Fetch<'_>, lod: usize, s: i32, t: i32) -> [u8; 4] {
+    #[inline(always)]
+    fn bilinear<const D: u8>(&self, lod: usize, s: i32, t: i32) -> u32 {
         let smax = self.layout.smax(lod) as i32;
         let tmax = self.layout.tmax(lod) as i32;
-        let (s0, s1) = neighbours(s >> 8, smax, TextureMode(self.texture_mode).tclamps());
-        let (t0, t1) = neighbours(t >> 8, tmax, TextureMode(self.texture_mode).tclampt());
-        let c00 = self.read(f, lod, s0, t0);
-        let c01 = self.read(f, lod, s1, t0);
-        let c10 = self.read(f, lod, s0, t1);
-        let c11 = self.read(f, lod, s1, t1);
+        let mode = TextureMode(self.texture_mode);
+        let (s0, s1) = neighbours(s >> 8, smax, mode.tclamps());
+        let (t0, t1) = neighbours(t >> 8, tmax, mode.tclampt());
+        let c00 = self.fetch::<D>(self.layout.texel_addr(lod, s0, t0));
+        let c01 = self.fetch::<D>(self.layout.texel_addr(lod, s1, t0));
+        let c10 = self.fetch::<D>(self.layout.texel_addr(lod, s0, t1));
+        let c11 = self.fetch::<D>(self.layout.texel_addr(lod, s1, t1));
         let (sf, tf) = ((s & 0xff) as u32, (t & 0xff) as u32);
-        let mut out = [0u8; 4];
-        for (ch, slot) in out.iter_mut().enumerate() {
-            let [a, b, c, d] = [c00[ch], c01[ch], c10[ch], c11[ch]].map(u32::from);
-            *slot = match self.profile.bilinear {
-                BilinearPrecision::Bits4 => {
-                    let (u, v) = (sf >> 4, tf >> 4);
-                    ((a * (16 - u) * (16 - v) + b * u * (16 - v) + c * (16 - u) * v + d * u * v)
-                        >> 8) as u8
-                }
-                BilinearPrecision::Bits8 => {
+        match self.profile.bilinear {
+            BilinearPrecision::Bits4 => {
+                let (u, v) = (sf >> 4, tf >> 4);
+                blend4(
+                    [c00, c01, c10, c11],
+                    [(16 - u) * (16 - v), u * (16 - v), (16 - u) * v, u * v],
+                )
+            }
+            BilinearPrecision::Bits8 => {
+                let mut out = 0;
+                for shift in [0, 8, 16, 24] {
+                    let [a, b, c, d] = [c00, c01, c10, c11].map(|v| (v >> shift) & 0xff);
                     // MAME/DOSBox SSE2 form: each row summed exactly, halved, then blended.
                     let h0 = a * (256 - sf) + b * sf;
                     let h1 = c * (256 - sf) + d * sf;
-                    (((h0 >> 1) * (256 - tf) + (h1 >> 1) * tf) >> 15) as u8
+                    out |= (((h0 >> 1) * (256 - tf) + (h1 >> 1) * tf) >> 15) << shift;
                 }
-            };
+                out
+            }
         }
-        out
     }
+}
+
+/// `sum(texel[i] * weight[i]) >> 8` per channel of four ARGB texels, with weights that
+/// sum to 256. The four channels are spread over 16-bit lanes of a `u64`: each product
+/// and the sum stay below `255 * 256 < 2^16`, so lanes never carry into each other.
+#[inline(always)]
+fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
+    let spread = |v: u32| u64::from(v & 0x00ff_00ff) | u64::from((v >> 8) & 0x00ff_00ff) << 32;
+    let mut sum = 0u64;
+    for (v, w) in texels.into_iter().zip(weights) {
+        sum += spread(v) * u64::from(w);
+    }
+    let lanes = (sum >> 8) & 0x00ff_00ff_00ff_00ff;
+    (lanes as u32) | ((lanes >> 32) as u32) << 8
 }
 
 /// The two neighbouring texel coordinates of a bilinear fetch, clamped or wrapped.
