@@ -49,6 +49,91 @@ fn expand(v: u32, bits: u32) -> u8 {
     out as u8
 }
 
+/// Packs `[r, g, b, a]` as `0xAARRGGBB`.
+pub(crate) fn to_argb([r, g, b, a]: [u8; 4]) -> u32 {
+    u32::from_be_bytes([a, r, g, b])
+}
+
+/// Unpacks `0xAARRGGBB` to `[r, g, b, a]`.
+pub(crate) fn to_rgba(argb: u32) -> [u8; 4] {
+    let [a, r, g, b] = argb.to_be_bytes();
+    [r, g, b, a]
+}
+
+/// RGB565 (format 10) as `0xAARRGGBB`, each field widened by replicating its top bits.
+#[inline(always)]
+pub(crate) fn rgb565(raw: u32) -> u32 {
+    let (r, g, b) = ((raw >> 11) & 0x1f, (raw >> 5) & 0x3f, raw & 0x1f);
+    0xff00_0000 | ((r << 3) | (r >> 2)) << 16 | ((g << 2) | (g >> 4)) << 8 | (b << 3) | (b >> 2)
+}
+
+/// ARGB1555 (format 11) as `0xAARRGGBB`.
+#[inline(always)]
+pub(crate) fn argb1555(raw: u32) -> u32 {
+    let (r, g, b) = ((raw >> 10) & 0x1f, (raw >> 5) & 0x1f, raw & 0x1f);
+    let a = if raw & 0x8000 != 0 { 0xff00_0000 } else { 0 };
+    a | ((r << 3) | (r >> 2)) << 16 | ((g << 3) | (g >> 2)) << 8 | (b << 3) | (b >> 2)
+}
+
+/// ARGB4444 (format 12) as `0xAARRGGBB`: each nibble times 0x11.
+#[inline(always)]
+pub(crate) fn argb4444(raw: u32) -> u32 {
+    let n = |shift: u32| (raw >> shift) & 0xf;
+    (n(12) << 24 | n(8) << 16 | n(4) << 8 | n(0)) * 0x11
+}
+
+/// How the texels of a format are turned into ARGB on the sampling path, chosen when the
+/// texture state changes so that no texel decodes by a `match` on `tformat`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Decode {
+    /// 8-bit formats (0..7): the texel indexes a 256-entry table of decoded texels.
+    Lut8,
+    /// 16-bit formats with an 8-bit colour and an 8-bit alpha (8, 9, 13, 14, 15): the low
+    /// byte indexes the table for RGB, the high byte is alpha.
+    LutLo16,
+    /// Format 10.
+    Rgb565,
+    /// Format 11.
+    Argb1555,
+    /// Format 12.
+    Argb4444,
+}
+
+impl Decode {
+    /// [`Decode::Lut8`] as a const generic argument.
+    pub const LUT8: u8 = 0;
+    /// [`Decode::LutLo16`] as a const generic argument.
+    pub const LUT_LO16: u8 = 1;
+    /// [`Decode::Rgb565`] as a const generic argument.
+    pub const RGB565: u8 = 2;
+    /// [`Decode::Argb1555`] as a const generic argument.
+    pub const ARGB1555: u8 = 3;
+    /// [`Decode::Argb4444`] as a const generic argument.
+    pub const ARGB4444: u8 = 4;
+
+    /// The decode of `tformat`.
+    pub fn of(tformat: u32) -> Self {
+        match tformat & 0xf {
+            0..=7 => Self::Lut8,
+            10 => Self::Rgb565,
+            11 => Self::Argb1555,
+            12 => Self::Argb4444,
+            _ => Self::LutLo16,
+        }
+    }
+}
+
+/// The 256-entry table of decoded texels (`0xAARRGGBB`) for `tformat`: every 8-bit texel,
+/// or, for the 16-bit formats, every low byte (the alpha there is replaced by the high
+/// byte at fetch time).
+pub(crate) fn lut(tformat: u32, l: &Lookups<'_>) -> [u32; 256] {
+    let mut out = [0; 256];
+    for (raw, slot) in out.iter_mut().enumerate() {
+        *slot = to_argb(decode(tformat, raw as u32, l));
+    }
+    out
+}
+
 /// `[r, g, b]` of an RGB 3-3-2 byte.
 fn rgb332(v: u32) -> [u8; 3] {
     [expand(v >> 5, 3), expand(v >> 2, 3), expand(v, 2)]
@@ -89,24 +174,9 @@ pub(crate) fn decode(tformat: u32, raw: u32, l: &Lookups<'_>) -> [u8; 4] {
         }
         8 => rgba(rgb332(raw), hi),
         9 => rgba(l.ncc[usize::from(lo)], hi),
-        10 => [
-            expand(raw >> 11, 5),
-            expand(raw >> 5, 6),
-            expand(raw, 5),
-            0xff,
-        ],
-        11 => [
-            expand(raw >> 10, 5),
-            expand(raw >> 5, 5),
-            expand(raw, 5),
-            if raw & 0x8000 != 0 { 0xff } else { 0 },
-        ],
-        12 => [
-            expand(raw >> 8, 4),
-            expand(raw >> 4, 4),
-            expand(raw, 4),
-            expand(raw >> 12, 4),
-        ],
+        10 => to_rgba(rgb565(raw)),
+        11 => to_rgba(argb1555(raw)),
+        12 => to_rgba(argb4444(raw)),
         13 => [lo, lo, lo, hi],
         _ => rgba(l.palette[usize::from(lo)], hi),
     }
@@ -181,6 +251,44 @@ mod tests {
         assert_eq!(decode(13, 0x805a, &l), [0x5a, 0x5a, 0x5a, 0x80]);
         assert_eq!(decode(14, 0x8077, &l), [0xfe, 0xdc, 0xba, 0x80]);
         assert_eq!(decode(15, 0x8077, &l), [0xfe, 0xdc, 0xba, 0x80]);
+    }
+
+    #[test]
+    fn direct_16bit_decoders_replicate_top_bits() {
+        for raw in 0..=0xffff_u32 {
+            let a1 = if raw & 0x8000 != 0 { 0xff } else { 0 };
+            let e = |v: u32, bits: u32| expand(v, bits);
+            assert_eq!(
+                to_rgba(rgb565(raw)),
+                [e(raw >> 11, 5), e(raw >> 5, 6), e(raw, 5), 0xff]
+            );
+            assert_eq!(
+                to_rgba(argb1555(raw)),
+                [e(raw >> 10, 5), e(raw >> 5, 5), e(raw, 5), a1]
+            );
+            assert_eq!(
+                to_rgba(argb4444(raw)),
+                [e(raw >> 8, 4), e(raw >> 4, 4), e(raw, 4), e(raw >> 12, 4)]
+            );
+        }
+    }
+
+    #[test]
+    fn lut_holds_each_decoded_byte() {
+        let (ncc, pal) = tables();
+        let l = lookups(&ncc, &pal);
+        for f in [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 13, 14, 15] {
+            let t = lut(f, &l);
+            for raw in 0..256u32 {
+                assert_eq!(to_rgba(t[raw as usize]), decode(f, raw, &l), "{f} {raw}");
+            }
+        }
+        assert_eq!(Decode::of(0x5), Decode::Lut8);
+        assert_eq!(Decode::of(0x9), Decode::LutLo16);
+        assert_eq!(Decode::of(0xe), Decode::LutLo16);
+        assert_eq!(Decode::of(0xa), Decode::Rgb565);
+        assert_eq!(Decode::of(0xb), Decode::Argb1555);
+        assert_eq!(Decode::of(0xc), Decode::Argb4444);
     }
 
     #[test]

@@ -74,6 +74,68 @@ fn log2_86box(val: u64) -> i32 {
     (exp << 8) | i32::from(LOG2_FRAC_256[frac as usize])
 }
 
+/// Entries of the reciprocal/log table: 512 steps of the mantissa range 1.0..=2.0.
+const RECIPLOG_STEPS: usize = 512;
+
+/// The reciprocal/log table DOSBox builds at start-up: for `n = 1 + i / 512`
+/// (`i = 0..=512`), `[2^22 / n, 2^22 * log2 n]`, each truncated to an integer.
+/// Source: DOSBox Staging `voodoo_reciplog` (lookup bits 9, lookup precision 22).
+fn reciplog_table() -> &'static [[u32; 2]; RECIPLOG_STEPS + 1] {
+    static TABLE: std::sync::OnceLock<[[u32; 2]; RECIPLOG_STEPS + 1]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        let mut t = [[0u32; 2]; RECIPLOG_STEPS + 1];
+        let width = f64::from(1u32 << 22);
+        let steps = RECIPLOG_STEPS as f64;
+        for (i, e) in t.iter_mut().enumerate() {
+            let n = steps + i as f64;
+            *e = [
+                (steps * width / n) as u32,
+                ((n / steps).log2() * width) as u32,
+            ];
+        }
+        t
+    })
+}
+
+/// DOSBox Staging's `fast_reciplog`: `1 / value` for a .32 value, as .15 (sign kept), and
+/// `log2(1 / value)` as 24.8, both interpolated linearly between the two nearest entries of
+/// [`reciplog_table`] with the 8 mantissa bits below the table index. Only bits 47:0 of
+/// the magnitude count (bits 47:32 set: bits 47:16 are used). Zero gives the largest
+/// reciprocal and a log of 1000.0.
+pub(crate) fn reciplog_dosbox(value: i64) -> (i64, i32) {
+    let neg = value < 0;
+    let mag = value.wrapping_abs() as u64;
+    let (mut temp, mut exponent) = if mag & 0xffff_0000_0000 != 0 {
+        ((mag >> 16) as u32, -16i32)
+    } else {
+        (mag as u32, 0)
+    };
+    if temp == 0 {
+        return (if neg { 0x8000_0000 } else { 0x7fff_ffff }, 1000 << 8);
+    }
+    let lz = temp.leading_zeros();
+    temp <<= lz;
+    exponent += lz as i32;
+    let table = reciplog_table();
+    let index = ((temp >> 22) & 0x1ff) as usize;
+    let interp = (temp >> 14) & 0xff;
+    let (lo, hi) = (table[index], table[index + 1]);
+    let rlog = (lo[1] * (0x100 - interp) + hi[1] * interp) >> 8;
+    let mut recip = u64::from((lo[0] * (0x100 - interp) + hi[0] * interp) >> 8);
+    // Round the 22-bit log fraction to 8 bits; log(1/v) = exponent - log(mantissa).
+    let rlog = (rlog + (1 << 13)) >> 14;
+    let log = ((exponent + 1) << 8) - rlog as i32;
+    // 22 fraction bits in the table, 15 wanted, input .32 normalised at bit 31.
+    let shift = exponent - 6;
+    if shift < 0 {
+        recip >>= -shift;
+    } else {
+        recip <<= shift;
+    }
+    let recip = recip as i64;
+    (if neg { recip.wrapping_neg() } else { recip }, log)
+}
+
 /// Converts a double to i32 as x86 `cvttsd2si` does (truncation; NaN and out-of-range give
 /// `i32::MIN`), which is what the C++ references compiled to.
 pub(crate) fn f64_to_i32_x86(v: f64) -> i32 {
@@ -97,6 +159,18 @@ pub(crate) fn lod_base(calc: LodCalc, g: [i64; 4], t_lod: u32) -> i32 {
             let texdy = b * b + d * d;
             let max = if texdx < texdy { texdy } else { texdx };
             log2_mame(max, 64) / 2
+        }
+        LodCalc::Dosbox => {
+            // Source: DOSBox Staging `prepare_tmu`: gradients reduced to .18, squared as
+            // 64-bit integers (28.36), the larger shifted to 28.20; log2 from
+            // `fast_reciplog` (of the reciprocal, hence negated), + 12 for the shift,
+            // halved towards zero.
+            let sq = |v: i64| (v >> 14).wrapping_mul(v >> 14);
+            let tdx = sq(dsdx).wrapping_add(sq(dtdx));
+            let tdy = sq(dsdy).wrapping_add(sq(dtdy));
+            let max = if tdx < tdy { tdy } else { tdx };
+            let (_, log) = reciplog_dosbox(max >> 16);
+            (-log + (12 << 8)) / 2
         }
         LodCalc::Box86 => {
             // Source: 86Box `voodoo_triangle`: gradients reduced to .18, squared as
@@ -137,6 +211,13 @@ pub(crate) fn pixel_lod(
         LodCalc::Mame => {
             if let Some(w) = p.persp_w {
                 lod = lod.wrapping_sub(log2_mame(w as f64, 32));
+            }
+            lod = lod.wrapping_add(tl.lodbias() << 6);
+        }
+        LodCalc::Dosbox => {
+            if let Some(w) = p.persp_w {
+                // Source: DOSBox Staging `TEXTURE_PIPELINE`: log2(1/W) from `fast_reciplog`.
+                lod = lod.wrapping_add(reciplog_dosbox(w).1);
             }
             lod = lod.wrapping_add(tl.lodbias() << 6);
         }
@@ -285,6 +366,51 @@ mod tests {
         );
         // 86Box: 2^48 / 2^30 = 2^18 -> 18 - 19 = -1.0
         assert_eq!(pixel_lod(LodCalc::Box86, LodDither::Off, &p, tl, false), 0);
+    }
+
+    #[test]
+    fn dosbox_reciplog() {
+        let one = 1i64 << 32;
+        // 1.0: 1/1 = 1.0 as .15, log 0
+        assert_eq!(reciplog_dosbox(one), (1 << 15, 0));
+        // 4.0 -> 0.25, log -2; 0.5 -> 2.0, log +1; signs carry to the reciprocal only
+        assert_eq!(reciplog_dosbox(4 * one), (1 << 13, -0x200));
+        assert_eq!(reciplog_dosbox(-(one / 2)), (-(1 << 16), 0x100));
+        // 1.5: table entry 256 exactly: 2^22 / 1.5 = 2796202 (.22) -> >> 7 = 21845;
+        // log2 1.5 * 2^22 = 2453426 -> rounded to 8 bits: (2453426 + 8192) >> 14 = 150
+        assert_eq!(reciplog_dosbox(3 * one / 2), (21845, -150));
+        // interpolation: 1 + 1/1024 lies halfway between entries 0 and 1
+        let t = reciplog_table();
+        let half = u64::from((t[0][0] + t[1][0]) >> 1) >> 7;
+        assert_eq!(reciplog_dosbox(one + (one >> 10)).0, half as i64);
+        // zero: the largest reciprocal, log 1000.0
+        assert_eq!(reciplog_dosbox(0), (0x7fff_ffff, 1000 << 8));
+        // above 32 integer bits only bits 47:16 are looked at
+        assert_eq!(reciplog_dosbox(1 << 47).1, -(15 << 8));
+    }
+
+    #[test]
+    fn dosbox_base_lod_from_gradients() {
+        let one = 1i64 << 32;
+        assert_eq!(lod_base(LodCalc::Dosbox, [one, 0, 0, one], 0), 0);
+        assert_eq!(lod_base(LodCalc::Dosbox, [4 * one, 0, 0, one], 0), 0x200);
+        // |(3, 4)| = 5: 25 = 16 * (1 + 288 / 512): log2 = 4 + 165 (entry 288, rounded) / 256
+        assert_eq!(
+            lod_base(LodCalc::Dosbox, [3 * one, one, 4 * one, 0], 0),
+            (0x400 + 165) / 2
+        );
+        // per pixel: log2(1 / 0.25) = +2; bias is added after
+        let p = PixelLod {
+            base: 0x100,
+            persp_w: Some(1 << 30),
+            x: 0,
+            y: 0,
+        };
+        let tl = (0x20 << 6) | (0x3e << 12); // lodmax 8.0, bias -0.5
+        assert_eq!(
+            pixel_lod(LodCalc::Dosbox, LodDither::Off, &p, tl, false),
+            0x300 - 0x80
+        );
     }
 
     #[test]

@@ -603,3 +603,19 @@ fn decal_invert_profile() {
         }
     );
 }
+
+#[test]
+fn persp_divide_profile() {
+    // W = 0.75, S / W = 128 LOD-0 texels exactly: the left edge of texel 4 (green) of
+    // LOD 5. DOSBox's table reciprocal of 0.75 is 43690 / 2^15, a little below 4/3, so
+    // it lands in texel 3 (red).
+    let mut tmu = rgb565_8x8(PERSP);
+    set_iter(&mut tmu, tex(96), tex(60), tex(24), tex(24), 3 << 28);
+    tmu.begin_triangle();
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN);
+    tmu.set_profile(TexelProfile {
+        persp_divide: PerspDivide::DosboxReciprocal,
+        ..TexelProfile::default()
+    });
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+}
