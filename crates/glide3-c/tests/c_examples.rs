@@ -17,13 +17,13 @@ use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The directory holding libglide3.so: the test binary lives in `<target>/<profile>/deps`.
+/// The directory holding libglide3.so: `<target>/<profile>/deps`, where the test
+/// binary lives and where cargo builds this package's cdylib before the tests (it
+/// copies it up to `<profile>/` only for `cargo build`, so that copy may be stale
+/// or missing).
 fn lib_dir() -> PathBuf {
     let exe = std::env::current_exe().expect("test binary path");
-    exe.parent()
-        .and_then(Path::parent)
-        .expect("target profile dir")
-        .to_path_buf()
+    exe.parent().expect("target deps dir").to_path_buf()
 }
 
 fn repo() -> PathBuf {

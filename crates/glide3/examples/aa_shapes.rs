@@ -7,8 +7,8 @@
 #[path = "support/mod.rs"]
 mod support;
 
-use glide3::consts::*;
-use glide3::Glide;
+use glide::consts::*;
+use glide::Glide;
 use sst1_board::BoardConfig;
 
 /// A vertex: x, y, r, g, b, a (window coordinates, colours 0..255).

@@ -8,8 +8,8 @@
 #[path = "support/mod.rs"]
 mod support;
 
-use glide3::consts::*;
-use glide3::{Glide, TexInfo};
+use glide::consts::*;
+use glide::{Glide, TexInfo};
 use sst1_board::BoardConfig;
 
 /// A vertex: x, y, 1/w, s0/w, t0/w, s1/w, t1/w.

@@ -7,8 +7,8 @@
 #[path = "support/mod.rs"]
 mod support;
 
-use glide3::consts::*;
-use glide3::{Glide, TexInfo};
+use glide::consts::*;
+use glide::{Glide, TexInfo};
 use sst1_board::BoardConfig;
 
 /// A vertex: x, y, 1/w, r, g, b, a, s/w, t/w.
@@ -49,7 +49,7 @@ pub fn draw(g: &mut Glide) {
     g.depth_buffer_function(GR_CMP_LESS);
     g.depth_mask(true);
     let mut fog = [0u8; 64];
-    glide3::get::fog_generate_linear(&mut fog, 1.0, 12.0);
+    glide::get::fog_generate_linear(&mut fog, 1.0, 12.0);
     g.fog_table(&fog);
     g.fog_color_value(0x00a0a0b0);
     g.fog_mode(GR_FOG_WITH_TABLE_ON_W);

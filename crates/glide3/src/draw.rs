@@ -4,23 +4,38 @@
 //! `FtriangleCMD`). Glide 3 on the SST-1 sends the floating-point register versions:
 //! vertex coordinates snapped by adding 3 * 2^18 (which leaves 4 fraction bits in the
 //! float mantissa), each parameter's start value at vertex A, and its X and Y gradients
-//! computed in single precision as
 //!
 //! ```text
-//! area = (xa - xb) * (yb - yc) - (xb - xc) * (ya - yb)      (snapped coordinates)
+//! area = (xa - xb) * (yb - yc) - (xb - xc) * (ya - yb)
 //! dpdx = (pa - pb) * ((yb - yc) / area) - (pb - pc) * ((ya - yb) / area)
 //! dpdy = (pb - pc) * ((xa - xb) / area) - (pa - pb) * ((xb - xc) / area)
 //! ```
 //!
 //! with the vertices sorted by snapped Y (ties broken the way 3dfx's `_trisetup`
-//! does), every product and difference rounded to `f32` in that order. Source: 3dfx
-//! SST-1 Glide 3 gxdraw.c `_trisetup` (read for the operation order); verified bit for
-//! bit against the test04 trace (tests/trisetup_trace.rs).
+//! does). The reference traces come from a 32-bit x87 build of 3dfx's C `_trisetup`
+//! (gxdraw.c), so the rounding follows what that build keeps in 64-bit-significand
+//! registers and what it stores as `float` (see the `x87` module):
+//!
+//! - `x + 3 * 2^18` stays in a register: the area is computed from the UNSNAPPED
+//!   positions; only the vertex registers get the snapped (`f32`) values;
+//! - the differences, products and the area's difference are extended; the area is
+//!   stored as a `float` (`_GlideRoot.pool.temp1`);
+//! - `ooa = 1 / area`, the deltas and the scaled deltas (`dxAB * ooa` ...) are
+//!   `float`s;
+//! - each gradient (`dpAB * dyBC - dpBC * dyAB`) is evaluated extended and rounded
+//!   once, when stored to its register.
+//!
+//! Source: 3dfx SST-1 Glide 3 gxdraw.c `_trisetup` (operation order); the rounding
+//! points were found against the glide-sdk traces and are verified bit for bit by
+//! tests/trisetup_trace.rs (test04 Gouraud, test06 W, test14 Z) and
+//! tests/texsetup_trace.rs (7434 console-text triangles: S, T, W, in all 18 traces).
+//! Lines (`line`) work from the snapped positions, which the test02 trace matches.
 
 use crate::aa::{AA_LINES, AA_POINTS, AA_TRIANGLES};
 use crate::consts::*;
 use crate::hw::bits::*;
 use crate::hw::{tmu_chip, PACKER_FIX};
+use crate::x87::Ext;
 use sst1_regs::addr::*;
 
 /// Added to window coordinates so the float keeps exactly 4 fraction bits (12.4).
@@ -133,6 +148,39 @@ fn sort_key(f: f32) -> i32 {
         i ^ 0x7fff_ffff
     } else {
         i
+    }
+}
+
+/// `c + SNAP_BIAS` as the x87 holds it (a 64-bit significand: exact for window
+/// coordinates); `.to_f32()` of it is the snapped coordinate.
+fn biased(c: f32) -> Ext {
+    Ext::from_f64(f64::from(c)).add(Ext::from_f64(f64::from(SNAP_BIAS)))
+}
+
+/// `1.0f / area` computed on the x87 and stored to a `float` (ties rounded twice,
+/// as the FPU does).
+fn x87_recip(area: f32) -> f32 {
+    match Ext::from_f64(1.0).div(Ext::from_f64(f64::from(area))) {
+        Some(q) if area.is_finite() => q.to_f32(),
+        _ => 1.0 / area,
+    }
+}
+
+/// `(u0 - u1) * su - (w0 - w1) * sw`, every step in x87 extended precision and the
+/// result stored to a `float` (one setup gradient). Infinities and NaN in the
+/// inputs follow IEEE arithmetic instead.
+/// UNVERIFIED: 3dfx's build may round `u0 - u1` or `w0 - w1` to float between the
+/// d/dX and d/dY stores; no traced parameter difference needs more than 24 bits.
+fn x87_gradient(u: (f32, f32), su: f32, w: (f32, f32), sw: f32) -> f32 {
+    let all = [u.0, u.1, su, w.0, w.1, sw];
+    if all.iter().all(|v| v.is_finite()) {
+        let e = |v: f32| Ext::from_f64(f64::from(v));
+        let du = e(u.0).sub(e(u.1));
+        let dw = e(w.0).sub(e(w.1));
+        du.mul(e(su)).sub(dw.mul(e(sw))).to_f32()
+    } else {
+        let f = f64::from;
+        ((f(u.0) - f(u.1)) * f(su) - (f(w.0) - f(w.1)) * f(sw)) as f32
     }
 }
 
@@ -381,14 +429,21 @@ impl crate::Glide {
     }
 
     /// Window-coordinate triangle setup (`_trisetup`). Returns 1 if drawn, 0 if
-    /// zero-area, -1 if culled.
+    /// zero-area (or a vertex position is infinite or NaN), -1 if culled.
     pub(crate) fn trisetup(&mut self, va: &[f32], vb: &[f32], vc: &[f32]) -> i32 {
         let xo = self.layout.xy.offset;
-        let y = |v: &[f32]| fetch(v, xo + 4) + SNAP_BIAS;
+        let finite = |v: &[f32]| fetch(v, xo).is_finite() && fetch(v, xo + 4).is_finite();
+        if !(finite(va) && finite(vb) && finite(vc)) {
+            // UNVERIFIED: 3dfx's code would send a NaN or infinite area to the chip;
+            // we treat such a triangle as degenerate.
+            return 0;
+        }
+        let y = |v: &[f32]| biased(fetch(v, xo + 4));
         // Bit 0 of the cull mode: 1 for GR_CULL_NEGATIVE, 0 for GR_CULL_POSITIVE.
         let mut cull = self.st.cull_mode & 1;
-        let (ka, kb, kc) = (sort_key(y(va)), sort_key(y(vb)), sort_key(y(vc)));
-        // Sort by Y; every odd permutation flips the culling sense.
+        let key = |v: &[f32]| sort_key(y(v).to_f32());
+        let (ka, kb, kc) = (key(va), key(vb), key(vc));
+        // Sort by snapped Y; every odd permutation flips the culling sense.
         let (fa, fb, fc) = if ka < kb {
             if kb > kc {
                 if ka < kc {
@@ -411,17 +466,14 @@ impl crate::Glide {
             cull ^= 1;
             (vc, vb, va)
         };
-        let sx = |v: &[f32]| fetch(v, xo) + SNAP_BIAS;
-        let (xa, xb, xc) = (sx(fa), sx(fb), sx(fc));
+        let x = |v: &[f32]| biased(fetch(v, xo));
+        let (xa, xb, xc) = (x(fa), x(fb), x(fc));
         let (ya, yb, yc) = (y(fa), y(fb), y(fc));
-        let mut dx_ab = xa - xb;
-        let mut dx_bc = xb - xc;
-        let mut dy_ab = ya - yb;
-        let mut dy_bc = yb - yc;
-        // x87 evaluation: products and difference in extended precision, one rounding
-        // to f32 on the store (the products of 12.4 coordinates are exact in f64).
-        let area =
-            (f64::from(dx_ab) * f64::from(dy_bc) - f64::from(dx_bc) * f64::from(dy_ab)) as f32;
+        let dx_ab = xa.sub(xb);
+        let dx_bc = xb.sub(xc);
+        let dy_ab = ya.sub(yb);
+        let dy_bc = yb.sub(yc);
+        let area = dx_ab.mul(dy_bc).sub(dx_bc.mul(dy_ab)).to_f32();
         if area.to_bits() & 0x7fff_ffff == 0 {
             return 0;
         }
@@ -431,44 +483,32 @@ impl crate::Glide {
             return -1;
         }
         self.flush_state();
-        let ooa = 1.0f32 / area;
-        self.hw.wf(F_VERTEX_AX, xa);
-        self.hw.wf(F_VERTEX_AY, ya);
-        self.hw.wf(F_VERTEX_BX, xb);
-        self.hw.wf(F_VERTEX_BY, yb);
-        self.hw.wf(F_VERTEX_CX, xc);
-        self.hw.wf(F_VERTEX_CY, yc);
-        dx_bc *= ooa;
-        dy_ab *= ooa;
-        dx_ab *= ooa;
-        dy_bc *= ooa;
+        let ooa = x87_recip(area);
+        self.hw.wf(F_VERTEX_AX, xa.to_f32());
+        self.hw.wf(F_VERTEX_AY, ya.to_f32());
+        self.hw.wf(F_VERTEX_BX, xb.to_f32());
+        self.hw.wf(F_VERTEX_BY, yb.to_f32());
+        self.hw.wf(F_VERTEX_CX, xc.to_f32());
+        self.hw.wf(F_VERTEX_CY, yc.to_f32());
+        // The deltas and their products with `ooa` are `float` variables; the f32
+        // product of two f32 values equals the x87 product stored to a float.
+        // UNVERIFIED: whether the deltas are rounded to float before the scaling
+        // (they are here) changes no traced value.
+        let dx_bc = dx_bc.to_f32() * ooa;
+        let dy_ab = dy_ab.to_f32() * ooa;
+        let dx_ab = dx_ab.to_f32() * ooa;
+        let dy_bc = dy_bc.to_f32() * ooa;
         for i in 0..self.data_list.len() {
             let e = self.data_list[i];
             let pa = value(fa, e);
             let Some(reg) = self.send_start(e, pa) else {
                 continue;
             };
-            // 3dfx's code was compiled for the x87: the parameter differences and the
-            // gradient expressions stay in extended precision and are rounded to f32
-            // once, when stored to the register (the scaled deltas above are f32
-            // variables). Matches test04; UNVERIFIED: f64 stands in for the 80-bit
-            // format, which can differ in the last bit for parameters whose
-            // differences need more than 53 bits.
-            let (pa, pb, pc) = (
-                f64::from(pa),
-                f64::from(value(fb, e)),
-                f64::from(value(fc, e)),
-            );
-            let dp_ab = pa - pb;
-            let dp_bc = pb - pc;
-            self.hw.wf(
-                reg + DPDX,
-                (dp_ab * f64::from(dy_bc) - dp_bc * f64::from(dy_ab)) as f32,
-            );
-            self.hw.wf(
-                reg + DPDY,
-                (dp_bc * f64::from(dx_ab) - dp_ab * f64::from(dx_bc)) as f32,
-            );
+            let (pb, pc) = (value(fb, e), value(fc, e));
+            self.hw
+                .wf(reg + DPDX, x87_gradient((pa, pb), dy_bc, (pb, pc), dy_ab));
+            self.hw
+                .wf(reg + DPDY, x87_gradient((pb, pc), dx_ab, (pa, pb), dx_bc));
         }
         self.hw.wf(F_TRIANGLE_CMD, area);
         self.stats.triangles_drawn += 1;

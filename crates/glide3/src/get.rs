@@ -56,7 +56,7 @@ fn exp_entry(e: f32, e_last: f32) -> u8 {
             entry(Some(a.mul(Ext::from_f64(f64::from(scale.to_f32())))))
         }
         // scale = +inf (density 0): 0 * inf is NaN, anything else saturates.
-        _ if a == Ext::from_f64(0.0) => entry(None),
+        _ if a.is_zero() => entry(None),
         _ => entry(Some(a.mul(Ext::from_f64(f64::from(f32::MAX) * 4.0)))),
     }
 }
@@ -101,7 +101,7 @@ pub fn fog_generate_linear(table: &mut [u8; FOG_TABLE_SIZE], near: f32, far: f32
             match num.div(den) {
                 Some(f) => entry(Some(f)),
                 // x / 0: +-inf saturates, 0 / 0 is NaN.
-                None if num == Ext::from_f64(0.0) => entry(None),
+                None if num.is_zero() => entry(None),
                 None if num.lt_zero() => 0,
                 None => 255,
             }

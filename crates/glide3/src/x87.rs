@@ -1,5 +1,5 @@
 //! x87 extended-precision arithmetic (64-bit significand) for the `gu` fog-table
-//! utilities.
+//! utilities and the triangle setup (`draw.rs`).
 //!
 //! 3dfx's `guFogGenerate*` (gu.c) keep `1 - exp(-dp)`, the product with `scale` and
 //! the `* 255` in x87 registers, so they are rounded to a 64-bit significand, not to
@@ -8,10 +8,11 @@
 //! single or double precision. Source: the glide-sdk traces test08/test22/test24
 //! (tests/fog_trace.rs), which single- and double-precision models both miss.
 //!
-//! Only finite values are represented; callers handle infinities and NaN.
+//! Only finite values are represented (zeros keep their sign, as the FPU's do);
+//! callers handle infinities and NaN.
 
 /// A finite x87 extended value: `(-1)^neg * m * 2^e`, `m` normalised (bit 63 set)
-/// or zero.
+/// or zero (`m == 0`, `e == 0`, `neg` its sign).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Ext {
     neg: bool,
@@ -27,10 +28,10 @@ impl Ext {
     };
 
     /// Round `m * 2^e` (plus a non-zero remainder below `m` when `sticky`) to a
-    /// 64-bit significand, ties to even.
+    /// 64-bit significand, ties to even. A zero keeps the sign `neg`.
     fn round(neg: bool, m: u128, e: i32, sticky: bool) -> Ext {
         if m == 0 {
-            return Ext::ZERO;
+            return Ext { neg, ..Ext::ZERO };
         }
         let bits = 128 - m.leading_zeros() as i32;
         if bits <= 64 {
@@ -60,10 +61,17 @@ impl Ext {
         }
     }
 
-    /// The exact value of a finite `f64` (every `f32` converts exactly too).
+    /// The exact value of a finite `f64` (every `f32` converts exactly too); a
+    /// non-finite value gives +0.
     pub(crate) fn from_f64(v: f64) -> Ext {
-        if !v.is_finite() || v == 0.0 {
+        if !v.is_finite() {
             return Ext::ZERO;
+        }
+        if v == 0.0 {
+            return Ext {
+                neg: v.is_sign_negative(),
+                ..Ext::ZERO
+            };
         }
         let bits = v.to_bits();
         let exp = ((bits >> 52) & 0x7ff) as i32;
@@ -76,8 +84,15 @@ impl Ext {
         Ext::round(v < 0.0, u128::from(m), e, false)
     }
 
-    /// `self + other`, rounded.
+    /// `self + other`, rounded (round to nearest: an exact zero sum is +0 unless
+    /// both terms are -0).
     pub(crate) fn add(self, other: Ext) -> Ext {
+        if self.m == 0 && other.m == 0 {
+            return Ext {
+                neg: self.neg && other.neg,
+                ..Ext::ZERO
+            };
+        }
         let (a, b) = if (self.m == 0) || (other.m != 0 && self.mag_lt(other)) {
             (other, self)
         } else {
@@ -98,6 +113,8 @@ impl Ext {
         let e = a.e - 62;
         if a.neg == b.neg {
             Ext::round(a.neg, ua + ub, e, sticky)
+        } else if ua == ub && !sticky {
+            Ext::ZERO
         } else if sticky {
             // True value is (ua - ub - delta), 0 < delta < 1 unit: one extra bit below.
             Ext::round(a.neg, ((ua - ub) << 1) - 1, e - 1, true)
@@ -139,6 +156,11 @@ impl Ext {
         ))
     }
 
+    /// `self == 0.0` (either sign).
+    pub(crate) fn is_zero(self) -> bool {
+        self.m == 0
+    }
+
     fn mag_lt(self, other: Ext) -> bool {
         (self.e, self.m) < (other.e, other.m)
     }
@@ -153,10 +175,13 @@ impl Ext {
         self.neg && self.m != 0
     }
 
-    /// Rounded to `f32` (a `float` variable's store), ties to even.
+    /// Rounded to `f32` (a `float` variable's store), ties to even; beyond the
+    /// `f32` range it gives the infinity of its sign.
+    /// UNVERIFIED: results in the `f32` subnormal range are rounded twice (to 24
+    /// bits, then to the subnormal's precision); no setup or fog value gets there.
     pub(crate) fn to_f32(self) -> f32 {
         if self.m == 0 {
-            return 0.0;
+            return if self.neg { -0.0 } else { 0.0 };
         }
         // 24 bits are exact in an f64; the power of two scales it exactly for the
         // magnitudes the fog utilities produce.
@@ -197,6 +222,21 @@ mod tests {
         assert!(!r.gt_one() && r != one);
         assert_eq!(r.mul(Ext::from_f64(255.0)).trunc_u8(), 254);
         assert_eq!(one.sub(Ext::from_f64(1e-20)), one);
+    }
+
+    #[test]
+    fn signed_zeros_and_range() {
+        let (z, nz) = (Ext::from_f64(0.0), Ext::from_f64(-0.0));
+        let bits = |e: Ext| e.to_f32().to_bits();
+        assert_eq!(bits(nz), 0x8000_0000);
+        assert_eq!(bits(z.mul(Ext::from_f64(-2.0))), 0x8000_0000);
+        assert_eq!(bits(nz.sub(z)), 0x8000_0000);
+        assert_eq!(bits(nz.add(z)), 0);
+        let one = Ext::from_f64(-1.5);
+        assert_eq!(bits(one.sub(one)), 0);
+        assert!(nz.is_zero() && !one.is_zero());
+        assert_eq!(Ext::from_f64(1e39).to_f32(), f32::INFINITY);
+        assert_eq!(Ext::from_f64(-1e39).to_f32(), f32::NEG_INFINITY);
     }
 
     #[test]

@@ -6,8 +6,8 @@
 
 mod common;
 use common::{assert_prefix, trace, Op, Rec};
-use glide3::consts::*;
-use glide3::{BoardInfo, Glide};
+use glide::consts::*;
+use glide::{BoardInfo, Glide};
 
 const BIAS: f32 = (3 << 18) as f32;
 

@@ -3,8 +3,8 @@
 
 mod common;
 use common::Rec;
-use glide3::consts::*;
-use glide3::{BoardInfo, Glide};
+use glide::consts::*;
+use glide::{BoardInfo, Glide};
 use std::cell::RefCell;
 use std::rc::Rc;
 

@@ -4,8 +4,8 @@
 
 mod common;
 use common::{trace, Op, Rec};
-use glide3::get::{fog_generate_exp, FOG_TABLE_SIZE};
-use glide3::{BoardInfo, Glide};
+use glide::get::{fog_generate_exp, FOG_TABLE_SIZE};
+use glide::{BoardInfo, Glide};
 
 const FOG_TABLE: u32 = 0x160;
 

@@ -6,9 +6,9 @@
 
 mod common;
 use common::{Op, Rec};
-use glide3::consts::*;
-use glide3::get::get_string;
-use glide3::{BoardInfo, Glide};
+use glide::consts::*;
+use glide::get::get_string;
+use glide::{BoardInfo, Glide};
 
 fn open(fbi_mb: u32, tmus: u32, tmu_mb: u32) -> (Glide, Rec) {
     let rec = Rec::default();
@@ -144,7 +144,7 @@ fn counters_follow_drawing_and_reset() {
     assert!(g.reset(GR_STATS_PIXELS));
     assert_eq!(rec.0.borrow()[before..], [Op::W(0x120, 1)]);
     assert!(g.reset(GR_VERTEX_PARAMETER));
-    assert_eq!(g.get_vertex_layout(), glide3::VertexLayout::default());
+    assert_eq!(g.get_vertex_layout(), glide::VertexLayout::default());
     assert!(!g.reset(GR_STATS_PIXELS_IN));
 }
 

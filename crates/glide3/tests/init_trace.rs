@@ -4,8 +4,8 @@
 
 mod common;
 use common::{assert_prefix, trace, Op, Rec};
-use glide3::consts::*;
-use glide3::{BoardInfo, Glide};
+use glide::consts::*;
+use glide::{BoardInfo, Glide};
 
 /// Our writes for init + window open (the part every glide-sdk test shares).
 fn open_640x480() -> (Glide, Rec) {

@@ -1,8 +1,8 @@
 //! Shared by the example scenes: a 640x480 Glide window on an emulated SST-1 behind an
 //! `sst1_trace::Recorder`, one frame, and the trace written to `traces/examples/`.
 
-use glide3::consts::*;
-use glide3::{BoardInfo, Glide, RegisterBus};
+use glide::consts::*;
+use glide::{BoardInfo, Glide, RegisterBus};
 use sst1_board::{Board, BoardConfig};
 use sst1_trace::{write_text, DumpBuffer, Recorder, Trace};
 use std::cell::RefCell;

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use flate2::read::GzDecoder;
-use glide3::RegisterBus;
+use glide::RegisterBus;
 use std::cell::RefCell;
 use std::io::Read;
 use std::rc::Rc;
