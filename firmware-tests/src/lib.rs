@@ -252,22 +252,13 @@ pub mod bits {
 /// Afterwards: `fbzMode` = 0x4601 (clip on, RGB and aux writes on, drawing into the back
 /// buffer), clip rectangle 640x480, `fbiInit3` Y origin swap value 479.
 pub fn init_640x480(port: &mut impl Port) {
-    // Source: traces/conformance/traces/flat_nodither.trace.gz, its first writes.
+    // The mode set (source: the conformance traces' first writes), then Glide's default
+    // state and a clear.
     port.pci_write(PCI_INIT_ENABLE, 0x0000_0003);
+    for &(a, v) in sst1_board::presets::GLIDE_640X480 {
+        port.write(a, v);
+    }
     const WRITES: &[(u32, u32)] = &[
-        (addr::FBI_INIT0, 0x0000_0007),
-        (addr::FBI_INIT1, 0x0000_01a2),
-        (addr::FBI_INIT0, 0x0000_0001),
-        (addr::H_SYNC, 0x02c0_0060),
-        (addr::V_SYNC, 0x020b_0002),
-        (addr::BACK_PORCH, 0x0012_0032),
-        (addr::VIDEO_DIMENSIONS, 0x01e0_027f),
-        (addr::FBI_INIT2, 0x1874_b040),
-        (addr::FBI_INIT3, 0x77de_4000),
-        (addr::FBI_INIT4, 0x0000_0001),
-        (addr::FBI_INIT1, 0x0020_00a2),
-        (addr::CLIP_LEFT_RIGHT, 0x0000_0280),
-        (addr::CLIP_LOW_Y_HIGH_Y, 0x0000_01e0),
         (addr::FBZ_COLOR_PATH, 0x0000_0000),
         (addr::FOG_MODE, 0x0000_0000),
         (addr::ALPHA_MODE, 0x0000_0000),

@@ -13,6 +13,7 @@
 mod bus;
 mod chain;
 mod diagnostics;
+pub mod presets;
 
 use serde::{Deserialize, Serialize};
 

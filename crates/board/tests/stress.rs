@@ -30,30 +30,13 @@ const PCI_INIT_ENABLE: u32 = 0x40;
 /// `fbzMode` bit 0: clip to the clip rectangle.
 const FBZ_CLIP: u32 = 1;
 
-/// The Glide-style 640x480 initialisation of the conformance traces (two colour buffers
-/// and an aux buffer in 4 MiB; drawing into the back buffer; clip 640x480).
-/// Source: traces/conformance/traces/flat_nodither.trace.gz, its first writes.
-const INIT: &[(u32, u32)] = &[
-    (addr::FBI_INIT0, 0x0000_0007),
-    (addr::FBI_INIT1, 0x0000_01a2),
-    (addr::FBI_INIT0, 0x0000_0001),
-    (addr::H_SYNC, 0x02c0_0060),
-    (addr::V_SYNC, 0x020b_0002),
-    (addr::BACK_PORCH, 0x0012_0032),
-    (addr::VIDEO_DIMENSIONS, 0x01e0_027f),
-    (addr::FBI_INIT2, 0x1874_b040),
-    (addr::FBI_INIT3, 0x77de_4000),
-    (addr::FBI_INIT4, 0x0000_0001),
-    (addr::FBI_INIT1, 0x0020_00a2),
-    (addr::CLIP_LEFT_RIGHT, 0x0000_0280),
-    (addr::CLIP_LOW_Y_HIGH_Y, 0x0000_01e0),
-    (addr::FBZ_MODE, 0x0000_4601),
-    (addr::STIPPLE, 0xffff_ffff),
-];
+/// After the Glide 640x480 mode set: clip on, RGB and aux writes on, drawing into the
+/// back buffer; stipple all ones.
+const INIT_TAIL: &[(u32, u32)] = &[(addr::FBZ_MODE, 0x0000_4601), (addr::STIPPLE, 0xffff_ffff)];
 
 fn init(board: &mut Board) {
-    board.pci_write(PCI_INIT_ENABLE, 3);
-    for &(a, v) in INIT {
+    sst1_board::presets::init_glide_640x480(board);
+    for &(a, v) in INIT_TAIL {
         board.write32(a, v);
     }
 }
@@ -299,7 +282,7 @@ impl Generator {
             // fbzMode writes leave a layout where little can be drawn.
             95 => {
                 self.ops.push(Op::Pci(PCI_INIT_ENABLE, 3));
-                for &(a, v) in INIT {
+                for &(a, v) in sst1_board::presets::GLIDE_640X480.iter().chain(INIT_TAIL) {
                     self.write(a, v);
                 }
             }

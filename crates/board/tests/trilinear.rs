@@ -30,25 +30,6 @@ const TEX_BASE: u32 = 0x80_0000;
 const TMU0: u32 = 0x800;
 const TMU1: u32 = 0x1000;
 
-/// The Glide-style 640x480 initialisation of the conformance traces.
-/// Source: traces/conformance/traces/flat_nodither.trace.gz, its first writes.
-const INIT: &[(u32, u32)] = &[
-    (addr::FBI_INIT0, 0x0000_0007),
-    (addr::FBI_INIT1, 0x0000_01a2),
-    (addr::FBI_INIT0, 0x0000_0001),
-    (addr::H_SYNC, 0x02c0_0060),
-    (addr::V_SYNC, 0x020b_0002),
-    (addr::BACK_PORCH, 0x0012_0032),
-    (addr::VIDEO_DIMENSIONS, 0x01e0_027f),
-    (addr::FBI_INIT2, 0x1874_b040),
-    (addr::FBI_INIT3, 0x77de_4000),
-    (addr::FBI_INIT4, 0x0000_0001),
-    (addr::FBI_INIT1, 0x0020_00a2),
-    (addr::CLIP_LEFT_RIGHT, 0x0000_0280),
-    (addr::CLIP_LOW_Y_HIGH_Y, 0x0000_01e0),
-    (addr::STIPPLE, 0xffff_ffff),
-];
-
 // --- register values -----------------------------------------------------------------
 
 /// `textureMode` bits 0-2 and 11:8: perspective, bilinear min and mag filters, RGB565.
@@ -158,10 +139,8 @@ fn board(tmus: u32, texel: TexelProfile) -> Board {
         texel,
         ..Default::default()
     });
-    b.pci_write(0x40, 3);
-    for &(a, v) in INIT {
-        b.write32(a, v);
-    }
+    sst1_board::presets::init_glide_640x480(&mut b);
+    b.write32(addr::STIPPLE, 0xffff_ffff);
     b.write32(addr::FBZ_MODE, FBZ);
     b.write32(addr::FBZ_COLOR_PATH, COLOR_PATH_TEXTURE);
     b

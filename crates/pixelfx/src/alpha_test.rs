@@ -6,16 +6,7 @@ use sst1_regs::AlphaFunction;
 /// `true` if the pixel passes the alpha test.
 #[inline(always)]
 pub fn test(func: AlphaFunction, alpha: u8, reference: u8) -> bool {
-    match func {
-        AlphaFunction::Never => false,
-        AlphaFunction::Less => alpha < reference,
-        AlphaFunction::Equal => alpha == reference,
-        AlphaFunction::LessEqual => alpha <= reference,
-        AlphaFunction::Greater => alpha > reference,
-        AlphaFunction::NotEqual => alpha != reference,
-        AlphaFunction::GreaterEqual => alpha >= reference,
-        AlphaFunction::Always => true,
-    }
+    func.passes(alpha as i32, reference as i32)
 }
 
 #[cfg(test)]

@@ -19,20 +19,10 @@ pub fn value(wbuffer: bool, z16: u16, wfloat: u16, bias: Option<u16>) -> i32 {
     }
 }
 
-/// The depth comparison: `true` if the pixel passes.
+/// The depth comparison (spec 5.19.1): `true` if the pixel passes.
 #[inline(always)]
 pub fn test(func: DepthFunction, source: i32, dest: u16) -> bool {
-    let d = dest as i32;
-    match func {
-        DepthFunction::Never => false,
-        DepthFunction::Less => source < d,
-        DepthFunction::Equal => source == d,
-        DepthFunction::LessEqual => source <= d,
-        DepthFunction::Greater => source > d,
-        DepthFunction::NotEqual => source != d,
-        DepthFunction::GreaterEqual => source >= d,
-        DepthFunction::Always => true,
-    }
+    func.passes(source, dest as i32)
 }
 
 #[cfg(test)]

@@ -281,6 +281,23 @@ field_enum! {
     }
 }
 
+impl CompareFunction {
+    /// `source OP reference`: whether a pixel passes the depth or alpha test.
+    #[inline]
+    pub const fn passes(self, source: i32, reference: i32) -> bool {
+        match self {
+            Self::Never => false,
+            Self::Less => source < reference,
+            Self::Equal => source == reference,
+            Self::LessEqual => source <= reference,
+            Self::Greater => source > reference,
+            Self::NotEqual => source != reference,
+            Self::GreaterEqual => source >= reference,
+            Self::Always => true,
+        }
+    }
+}
+
 /// `fbzMode` bits 7:5 (spec 5.19.1): `DEPTH_src OP DEPTH_dst`.
 pub type DepthFunction = CompareFunction;
 /// `alphaMode` bits 3:1 (spec 5.18.1): `AlphaSrc OP AlphaRef`.
