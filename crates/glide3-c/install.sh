@@ -14,7 +14,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 target=${CARGO_TARGET_DIR:-$root/target}
 
-(cd "$root" && cargo build --release -p glide3-c)
+# GLIDE3_FEATURES=window builds the optional live window (VOODOO_WINDOW=1).
+(cd "$root" && cargo build --release -p glide3-c ${GLIDE3_FEATURES:+--features "$GLIDE3_FEATURES"})
 
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include/glide3"
 install -m 0755 "$target/release/libglide3.so" "$prefix/lib/libglide3.so"

@@ -16,9 +16,13 @@
 //!   every buffer swap the trace gets a `dump front STEM_swapN_front.raw` point (STEM:
 //!   the file name up to its first dot), so `voodoo replay` reproduces each displayed
 //!   frame.
+//! * `VOODOO_WINDOW=1`: show the front buffer in a live window, updated at every buffer
+//!   swap (`window` module; needs the cargo feature `window` and a display, else one
+//!   line on stderr and the run stays headless).
 //! * `VOODOO_FBI_MB`, `VOODOO_TMUS`, `VOODOO_TMU_MB`: the board (default 4, 1, 4).
 //!
-//! Headless: there is no window; the board is the only output.
+//! Headless by default: without `VOODOO_WINDOW` there is no window; the board is the only
+//! output.
 
 #![allow(clippy::missing_safety_doc)]
 // Glide spells constants in mixed case; we keep the SDK spelling.
@@ -35,6 +39,8 @@ use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::io::Write;
 use std::path::PathBuf;
 use std::rc::Rc;
+
+mod window;
 
 /// `FxBool`.
 pub type FxBool = c_int;
@@ -169,6 +175,7 @@ struct Ctx {
     layouts: Saved<VertexLayout>,
     lfb: [Option<LfbShadow>; 2],
     png: Option<(String, Option<Vec<u32>>)>,
+    window: Option<window::LiveWindow>,
 }
 
 thread_local! {
@@ -227,6 +234,9 @@ fn after_swap(ctx: &mut Ctx) {
         r.recorder
             .borrow_mut()
             .dump(DumpBuffer::Front, &Recording::dump_name(&r.stem, n));
+    }
+    if let Some(w) = &ctx.window {
+        w.show(&ctx.board.0.borrow());
     }
     let Some((path, swaps)) = ctx.png.clone() else {
         return;
@@ -309,6 +319,7 @@ pub extern "C" fn grGlideInit() {
             layouts: Saved::default(),
             lfb: [None, None],
             png: png_setting(),
+            window: window::LiveWindow::from_env(),
         });
     });
 }
