@@ -8,8 +8,7 @@
 //! Each program is what a driver could run on a real board: the doc comment of each
 //! test says which value the board would read for that choice.
 //!
-//! The texel switches are run with their default choice only: their enums live in
-//! `texelfx`, which this crate does not depend on. The other choice's value is given in
+//! The texel switches are run with both choices. The other choice's value is also given in
 //! the doc comment (and `crates/board/tests/trilinear.rs` runs `Trilinear::Ignored`).
 
 use firmware_tests::bits::{alpha, fbz, lfb};
@@ -263,7 +262,7 @@ fn lfb_word_swap_always() {
     );
 }
 
-// --- texel switches (default choices; see the module comment) ----------------------------
+// --- texel switches -------------------------------------------------------------------
 
 /// Start of the texture region of the aperture (spec 4).
 const TEX_BASE: u32 = 0x80_0000;
@@ -279,7 +278,21 @@ const COLOR_PATH_TEXTURE: u32 = 1 | 1 << 27;
 /// `[t][s]`, `tLOD` = `t_lod` and `textureMode` = `mode`, then a flat triangle with
 /// `startS` = `s` (14.18), T 0 and no gradients. Returns the pixel at (4, 4).
 fn texel_program(texels: [[u16; 2]; 2], t_lod: u32, mode: u32, s: u32) -> u16 {
-    let mut p = Emulator::booted();
+    texel_program_with(texelfx::TexelProfile::default(), texels, t_lod, mode, s)
+}
+
+/// [`texel_program`] on a board with the texel switches `texel`.
+fn texel_program_with(
+    texel: texelfx::TexelProfile,
+    texels: [[u16; 2]; 2],
+    t_lod: u32,
+    mode: u32,
+    s: u32,
+) -> u16 {
+    let mut p = Emulator::booted_with(sst1_board::AccuracyProfile {
+        texel,
+        ..Default::default()
+    });
     p.write(addr::TEXTURE_MODE, TEX_565);
     p.write(addr::T_LOD, t_lod);
     p.write(addr::TEX_BASE_ADDR, 0);
@@ -326,6 +339,19 @@ fn coord_rounding_floor_wraps_to_the_last_texel() {
         texel_program(texels, fixed_lod(7 << 2), TEX_565 | DECAL, 0),
         0xf800
     );
+    // `CoordRounding::TowardZero`: S = -2^-18 truncates to texel 0.
+    let toward_zero = texelfx::TexelProfile {
+        coord_rounding: texelfx::CoordRounding::TowardZero,
+        ..Default::default()
+    };
+    let pixel = texel_program_with(
+        toward_zero,
+        texels,
+        fixed_lod(7 << 2),
+        TEX_565 | DECAL,
+        0xffff_ffff,
+    );
+    assert_eq!(pixel, 0xf800);
 }
 
 /// `DecalInvert::Ignored` (MAME, 86Box; default): decal with `tc_invert_output` and
@@ -337,6 +363,14 @@ fn decal_invert_ignored() {
     let red = [[0xf800; 2]; 2];
     let mode = TEX_565 | DECAL | 1 << 20 | 1 << 29;
     assert_eq!(texel_program(red, fixed_lod(7 << 2), mode, 0), 0xf800);
+    let applied = texelfx::TexelProfile {
+        decal_invert: texelfx::DecalInvert::Applied,
+        ..Default::default()
+    };
+    assert_eq!(
+        texel_program_with(applied, red, fixed_lod(7 << 2), mode, 0),
+        0x07ff
+    );
 }
 
 /// `Trilinear::Spec` (spec 5.50 diagram, 86Box; default): at LOD 7.25 (odd integer
@@ -358,4 +392,11 @@ fn trilinear_reverses_the_blend_on_odd_lods() {
     // Without the trilinear bit the factor is the fraction itself on every LOD.
     let plain = texel_program(white, lod | (8 << 2) << 6, mode & !(1 << 30), 0);
     assert_eq!(plain, rgb565_truncated(190, 190, 190));
+    // `Trilinear::Ignored`: the bit has no effect.
+    let ignored = texelfx::TexelProfile {
+        trilinear: texelfx::Trilinear::Ignored,
+        ..Default::default()
+    };
+    let pixel = texel_program_with(ignored, white, lod | (8 << 2) << 6, mode, 0);
+    assert_eq!(pixel, rgb565_truncated(190, 190, 190));
 }
