@@ -5,9 +5,9 @@
 //! register stream up to the end of the first frame's lines must equal the trace.
 
 mod common;
-use common::{assert_prefix, trace, Op, Rec};
+use common::{assert_prefix, trace, Op};
 use glide::consts::*;
-use glide::{BoardInfo, Glide};
+use glide::Glide;
 
 const BIAS: f32 = (3 << 18) as f32;
 
@@ -59,17 +59,7 @@ fn line_at(ops: &[Op]) -> ([f32; 8], [f32; 8]) {
 
 #[test]
 fn test24_antialiased_lines_registers() {
-    let rec = Rec::default();
-    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
-    g.sst_select(0);
-    assert!(g.win_open(
-        GR_RESOLUTION_640x480,
-        GR_REFRESH_60Hz,
-        GR_COLORFORMAT_ABGR,
-        GR_ORIGIN_LOWER_LEFT,
-        2,
-        1
-    ));
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_LOWER_LEFT);
     g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
     g.vertex_layout(GR_PARAM_A, 7 << 2, GR_PARAM_ENABLE);
     g.vertex_layout(GR_PARAM_Q, 3 << 2, GR_PARAM_ENABLE);

@@ -3,23 +3,12 @@
 //! traces, and the first frame's buffer clear must follow it.
 
 mod common;
-use common::{assert_prefix, trace, Op, Rec};
+use common::{assert_prefix, trace, Op};
 use glide::consts::*;
-use glide::{BoardInfo, Glide};
 
 /// Our writes for init + window open (the part every glide-sdk test shares).
-fn open_640x480() -> (Glide, Rec) {
-    let rec = Rec::default();
-    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
-    g.sst_select(0);
-    assert!(g.win_open(
-        GR_RESOLUTION_640x480,
-        GR_REFRESH_60Hz,
-        GR_COLORFORMAT_ABGR,
-        GR_ORIGIN_UPPER_LEFT,
-        2,
-        1
-    ));
+fn open_640x480() -> (glide::Glide, common::Rec) {
+    let (rec, g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
     (g, rec)
 }
 

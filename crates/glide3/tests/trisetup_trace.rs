@@ -21,17 +21,7 @@ fn vertex(x: f32, y: f32, r: f32, g: f32, b: f32) -> [f32; 15] {
 
 #[test]
 fn test04_gouraud_triangle_registers() {
-    let rec = Rec::default();
-    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
-    g.sst_select(0);
-    assert!(g.win_open(
-        GR_RESOLUTION_640x480,
-        GR_REFRESH_60Hz,
-        GR_COLORFORMAT_ABGR,
-        GR_ORIGIN_UPPER_LEFT,
-        2,
-        1
-    ));
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
     let mut w = [0i32; 2];
     g.get(GR_WDEPTH_MIN_MAX, 8, &mut w);
     g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
@@ -96,17 +86,7 @@ fn culling_and_zero_area() {
 /// (1, i/100), flat white. Every line's two half-triangles must match the trace.
 #[test]
 fn test02_lines_registers() {
-    let rec = Rec::default();
-    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
-    g.sst_select(0);
-    assert!(g.win_open(
-        GR_RESOLUTION_640x480,
-        GR_REFRESH_60Hz,
-        GR_COLORFORMAT_ABGR,
-        GR_ORIGIN_UPPER_LEFT,
-        2,
-        1
-    ));
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
     let mut w = [0i32; 2];
     g.get(GR_WDEPTH_MIN_MAX, 8, &mut w);
     g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);

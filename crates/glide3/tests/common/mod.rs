@@ -1,10 +1,9 @@
 //! Shared helpers: a recording bus and a reader for the glide-sdk text traces.
 #![allow(dead_code)]
 
-use flate2::read::GzDecoder;
-use glide::RegisterBus;
+use glide::consts::*;
+use glide::{BoardInfo, Glide, RegisterBus};
 use std::cell::RefCell;
-use std::io::Read;
 use std::rc::Rc;
 
 /// One bus operation as the text trace format writes it.
@@ -52,35 +51,45 @@ impl RegisterBus for Rec {
     }
 }
 
-fn num(s: &str) -> u32 {
-    if let Some(h) = s.strip_prefix("0x") {
-        u32::from_str_radix(h, 16).expect("hex number")
-    } else {
-        s.parse().expect("decimal number")
-    }
-}
-
-/// All `w`/`pci` operations of a glide-sdk trace, in order.
+/// All `w`/`pci` operations of a glide-sdk trace, in order (read with the project's
+/// own trace parser).
 pub fn trace(name: &str) -> Vec<Op> {
     let path = format!(
         "{}/../../traces/glide-sdk/traces/{name}.trace.gz",
         env!("CARGO_MANIFEST_DIR")
     );
-    let mut text = String::new();
-    GzDecoder::new(std::fs::File::open(&path).expect("trace file"))
-        .read_to_string(&mut text)
-        .expect("gzip text");
-    text.lines()
-        .filter_map(|l| {
-            let l = l.split('#').next().unwrap_or("");
-            let mut p = l.split_whitespace();
-            match p.next() {
-                Some("w") => Some(Op::W(num(p.next()?), num(p.next()?))),
-                Some("pci") => Some(Op::Pci(num(p.next()?), num(p.next()?))),
-                _ => None,
-            }
+    let trace = sst1_trace::load_trace(std::path::Path::new(&path)).expect("glide-sdk trace");
+    trace
+        .ops
+        .iter()
+        .filter_map(|op| match *op {
+            sst1_trace::TraceOp::Write { addr, value } => Some(Op::W(addr, value)),
+            sst1_trace::TraceOp::Pci { offset, value } => Some(Op::Pci(offset, value)),
+            _ => None,
         })
         .collect()
+}
+
+/// A Glide context on a recording bus (4 MiB FBI, one 4 MiB TMU), with
+/// `grSstWinOpen(640x480, 60 Hz, ABGR, origin, 2 colour buffers, 1 aux)` done.
+pub fn open_640x480(origin: u32) -> (Rec, Glide) {
+    open_640x480_on(BoardInfo::new(4, 1, 4), origin)
+}
+
+/// [`open_640x480`] on the board `info`.
+pub fn open_640x480_on(info: BoardInfo, origin: u32) -> (Rec, Glide) {
+    let rec = Rec::default();
+    let mut g = Glide::init(Box::new(rec.clone()), info);
+    g.sst_select(0);
+    assert!(g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ABGR,
+        origin,
+        2,
+        1
+    ));
+    (rec, g)
 }
 
 /// Compare `ours` with the start of `theirs`; on mismatch, list the first
