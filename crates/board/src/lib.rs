@@ -121,10 +121,14 @@ impl Board {
 
     /// Force the reference pixel path: every mode register is read at run time for every
     /// pixel instead of using a walker specialised for the triangle's modes (see
-    /// `pixelfx::specialize`). Output and counters are identical either way; this is
-    /// for differential testing and debugging. Off by default.
+    /// `pixelfx::specialize`), and every texel is decoded from texture memory instead of
+    /// read from the TMUs' decoded-texel caches. Output and counters are identical either
+    /// way; this is for differential testing and debugging. Off by default.
     pub fn set_reference(&mut self, reference: bool) {
         self.fbi.set_reference(reference);
+        for t in &mut self.tmus {
+            t.set_reference(reference);
+        }
     }
 
     /// Width and height of the video mode set by `videoDimensions`.

@@ -134,6 +134,38 @@ fn factor(
     }
 }
 
+/// What the blend of one colour channel needs besides the channel's own values.
+struct Channel {
+    sa: i32,
+    da: i32,
+    saturate: i32,
+    src_code: BlendFactor,
+    dst_code: BlendFactor,
+    sc: (i32, i32),
+    arith: BlendArithmetic,
+    /// The source factor scales the destination (86Box's ASATURATE operand).
+    saturate_dst: bool,
+}
+
+impl Channel {
+    /// `src * fs + dst * fd` for one channel, clamped to 0..=255; `pf` is the channel's
+    /// pre-fog colour. Inlined into the walker so that specialised walkers see the blend
+    /// codes as constants (a closure here was not inlined).
+    #[inline(always)]
+    fn blend(&self, s: i32, d: i32, pf: i32) -> i32 {
+        let fs = factor(self.src_code, self.sa, self.da, d, self.saturate, self.sc);
+        let fd = factor(self.dst_code, self.sa, self.da, s, pf, self.sc);
+        let sv = if self.saturate_dst { d } else { s };
+        let (ts, td) = match self.arith {
+            // Arithmetic shift: floor, as the references' signed shifts.
+            BlendArithmetic::Mame | BlendArithmetic::Dosbox => ((sv * fs) >> 8, (d * fd) >> 8),
+            // C division: truncation toward zero (negative only for aux words above 255).
+            BlendArithmetic::Exact255 => (sv * fs / 255, d * fd / 255),
+        };
+        (ts + td).clamp(0, 255)
+    }
+}
+
 /// The destination colour widened to 8 bits per channel.
 #[inline(always)]
 fn widen(p: u16, replicate: bool) -> [i32; 3] {
@@ -213,25 +245,22 @@ pub fn alpha_blend(
     let src_code = alpha_mode.src_rgb_blend();
     let dst_code = alpha_mode.dst_rgb_blend();
 
-    let rgb: [i32; 3] = crate::specialize::per_channel(|i| {
-        let fs = factor(src_code, sa, da, d[i], saturate, sc);
-        let fd = factor(dst_code, sa, da, s[i], pf[i], sc);
-        // The colour the source factor scales (86Box: the destination for ASATURATE).
-        let sv = if src_code == BlendFactor::SaturateOrColorBeforeFog
-            && profile.saturate == SaturateOperand::Destination
-        {
-            d[i]
-        } else {
-            s[i]
-        };
-        let (ts, td) = match arith {
-            // Arithmetic shift: floor, as the references' signed shifts.
-            BlendArithmetic::Mame | BlendArithmetic::Dosbox => ((sv * fs) >> 8, (d[i] * fd) >> 8),
-            // C division: truncation toward zero (negative only for aux words above 255).
-            BlendArithmetic::Exact255 => (sv * fs / 255, d[i] * fd / 255),
-        };
-        (ts + td).clamp(0, 255)
-    });
+    let channel = Channel {
+        sa,
+        da,
+        saturate,
+        src_code,
+        dst_code,
+        sc,
+        arith,
+        saturate_dst: src_code == BlendFactor::SaturateOrColorBeforeFog
+            && profile.saturate == SaturateOperand::Destination,
+    };
+    let rgb = [
+        channel.blend(s[0], d[0], pf[0]),
+        channel.blend(s[1], d[1], pf[1]),
+        channel.blend(s[2], d[2], pf[2]),
+    ];
 
     // Alpha channel: AONE or nothing (spec 5.18.2; all three references).
     let a_src = if alpha_mode.src_alpha_blend() == BlendFactor::One {

@@ -43,6 +43,8 @@ impl Tmu {
         if self.layout.bpp_shift == 1 {
             let s = (addr >> 1) & 0xfe;
             let texels = if width > 1 { 2 } else { 1 };
+            self.cache
+                .written(row.wrapping_add(s * 2), texels * 2, self.ram_mask);
             for k in 0..texels {
                 let a = row.wrapping_add((s + k) * 2);
                 let texel = (data >> (16 * k)) as u16;
@@ -55,6 +57,8 @@ impl Tmu {
             } else {
                 (addr >> 1) & 0xfc
             };
+            self.cache
+                .written(row.wrapping_add(s), width.min(4), self.ram_mask);
             for k in 0..width.min(4) {
                 self.store(row.wrapping_add(s + k), (data >> (8 * k)) as u8);
             }

@@ -110,6 +110,8 @@ impl Decode {
     pub const ARGB1555: u8 = 3;
     /// [`Decode::Argb4444`] as a const generic argument.
     pub const ARGB4444: u8 = 4;
+    /// Not a format: texels come already decoded from the texel cache (`crate::cache`).
+    pub const CACHED: u8 = 5;
 
     /// The decode of `tformat`.
     pub fn of(tformat: u32) -> Self {

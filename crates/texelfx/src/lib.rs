@@ -15,17 +15,20 @@
 //! 4. texture combine ([`sst1_chain`]).
 //!
 //! Texture memory is laid out as module `layout` describes and written by module
-//! `download`. No decoded-texel cache is kept, so every write to memory,
-//! the NCC tables, the palette or a texture register takes effect on the next texel.
+//! `download`. Texels are decoded one LOD at a time on first use into a cache (module
+//! `cache`) that any write changing them invalidates, so every write to memory, the NCC
+//! tables, the palette or a texture register takes effect on the next triangle.
 //!
 //! Where the reference emulators disagree, [`TexelProfile`] selects the behaviour.
 
+mod cache;
 mod download;
 mod format;
 mod layout;
 mod lod;
 mod sample;
 
+use cache::TexelCache;
 use layout::Layout;
 use sst1_chain::{detail_factor, Factors, TextureCombine};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
@@ -272,6 +275,10 @@ pub struct Tmu {
     lut_stale: bool,
     /// The combine passes the local texel through untouched (see [`DecalInvert`]).
     passthrough: bool,
+    /// Decoded levels of the bound texture.
+    cache: TexelCache,
+    /// Sample through `cache` (off: decode every texel from memory, the reference path).
+    cached: bool,
 }
 
 /// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero.
@@ -329,6 +336,8 @@ impl Tmu {
             texel_lut: Box::new([0; 256]),
             lut_stale: true,
             passthrough: false,
+            cache: TexelCache::new(),
+            cached: true,
         }
     }
 
@@ -344,6 +353,14 @@ impl Tmu {
         if p.ncc_update == NccUpdate::Immediate {
             self.expand_ncc();
         }
+    }
+
+    /// Decode every texel from texture memory for every pixel instead of reading the
+    /// decoded-texel cache (module `cache`). Output is identical either way; this is the
+    /// reference path for differential tests. Off by default.
+    pub fn set_reference(&mut self, reference: bool) {
+        self.cached = !reference;
+        self.cache.clear();
     }
 
     /// The behaviour switches in use.
@@ -474,7 +491,11 @@ impl Tmu {
 
     /// Recomputes what depends on the texture registers.
     fn refresh(&mut self) {
-        self.layout = Layout::new(self.texture_mode, self.t_lod, &self.tex_base, self.ram_mask);
+        let layout = Layout::new(self.texture_mode, self.t_lod, &self.tex_base, self.ram_mask);
+        if layout != self.layout {
+            self.cache.clear();
+        }
+        self.layout = layout;
         self.combine = TextureCombine::from_texture_mode(self.texture_mode);
         self.passthrough =
             self.profile.decal_invert == DecalInvert::Ignored && self.combine.is_local_identity();
@@ -484,8 +505,13 @@ impl Tmu {
     /// Rebuilds `decode` and `texel_lut` from the current format and tables.
     fn rebuild_lut(&mut self) {
         let tformat = TextureMode(self.texture_mode).format() as u32;
-        self.decode = format::Decode::of(tformat);
-        *self.texel_lut = format::lut(tformat, &self.lookups());
+        let decode = format::Decode::of(tformat);
+        let lut = format::lut(tformat, &self.lookups());
+        if decode != self.decode || lut != *self.texel_lut {
+            self.cache.clear();
+        }
+        self.decode = decode;
+        *self.texel_lut = lut;
         self.lut_stale = false;
     }
 

@@ -34,7 +34,7 @@ pub(crate) struct Sample {
 
 impl Tmu {
     /// Fetches the texel for iterated S, T (.32, i.e. 14.18 << 14) and W (.32, 2.30 << 2).
-    pub(crate) fn sample(&self, iters: i64, itert: i64, iterw: i64, x: i32, y: i32) -> Sample {
+    pub(crate) fn sample(&mut self, iters: i64, itert: i64, iterw: i64, x: i32, y: i32) -> Sample {
         let mode = TextureMode(self.texture_mode);
         let persp = mode.tpersp_st();
         let floor = self.profile.coord_rounding == CoordRounding::Floor;
@@ -101,12 +101,13 @@ impl Tmu {
         } else {
             !mode.tminfilter()
         };
-        let texel = match self.decode {
-            Decode::Lut8 => self.filter::<{ Decode::LUT8 }>(point, ilod, s, t),
-            Decode::LutLo16 => self.filter::<{ Decode::LUT_LO16 }>(point, ilod, s, t),
-            Decode::Rgb565 => self.filter::<{ Decode::RGB565 }>(point, ilod, s, t),
-            Decode::Argb1555 => self.filter::<{ Decode::ARGB1555 }>(point, ilod, s, t),
-            Decode::Argb4444 => self.filter::<{ Decode::ARGB4444 }>(point, ilod, s, t),
+        let texel = if self.cached {
+            if !self.cache.has(ilod) {
+                self.decode_level(ilod);
+            }
+            self.filter::<{ Decode::CACHED }>(point, ilod, s, t)
+        } else {
+            self.uncached_filter(point, ilod, s, t)
         };
         let zero_frac =
             self.profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
@@ -116,6 +117,38 @@ impl Tmu {
             lod_fraction: if zero_frac { 0 } else { (lod & 0xff) as u8 },
             odd_lod: ilod_raw & 1 != 0,
         }
+    }
+
+    /// [`Tmu::filter`] reading texels straight from memory in the current format.
+    fn uncached_filter(&self, point: bool, ilod: usize, s: i32, t: i32) -> [u8; 4] {
+        match self.decode {
+            Decode::Lut8 => self.filter::<{ Decode::LUT8 }>(point, ilod, s, t),
+            Decode::LutLo16 => self.filter::<{ Decode::LUT_LO16 }>(point, ilod, s, t),
+            Decode::Rgb565 => self.filter::<{ Decode::RGB565 }>(point, ilod, s, t),
+            Decode::Argb1555 => self.filter::<{ Decode::ARGB1555 }>(point, ilod, s, t),
+            Decode::Argb4444 => self.filter::<{ Decode::ARGB4444 }>(point, ilod, s, t),
+        }
+    }
+
+    /// Decodes LOD `lod` of the bound texture into the cache, with the fetch the uncached
+    /// path uses.
+    fn decode_level(&mut self, lod: usize) {
+        let mut texels = self.cache.take_buffer(lod);
+        let (w, h) = (self.layout.smax(lod) + 1, self.layout.tmax(lod) + 1);
+        texels.reserve((w * h) as usize);
+        let mut decode_with = |fetch: fn(&Tmu, usize, u32, u32) -> u32| {
+            for t in 0..h {
+                texels.extend((0..w).map(|s| fetch(self, lod, s, t)));
+            }
+        };
+        match self.decode {
+            Decode::Lut8 => decode_with(Tmu::texel_at::<{ Decode::LUT8 }>),
+            Decode::LutLo16 => decode_with(Tmu::texel_at::<{ Decode::LUT_LO16 }>),
+            Decode::Rgb565 => decode_with(Tmu::texel_at::<{ Decode::RGB565 }>),
+            Decode::Argb1555 => decode_with(Tmu::texel_at::<{ Decode::ARGB1555 }>),
+            Decode::Argb4444 => decode_with(Tmu::texel_at::<{ Decode::ARGB4444 }>),
+        }
+        self.cache.fill(lod, &self.layout, texels);
     }
 
     /// Point sampling or bilinear filtering of 24.8 LOD-0 coordinates at LOD `lod`, for
@@ -135,9 +168,14 @@ impl Tmu {
         format::to_rgba(texel)
     }
 
-    /// Reads and decodes the texel at byte address `addr` (not yet wrapped), as ARGB.
+    /// The texel `(s, t)` (in range) of LOD `lod` as ARGB: from the cache for
+    /// [`Decode::CACHED`], otherwise read from memory and decoded as `D`.
     #[inline(always)]
-    fn fetch<const D: u8>(&self, addr: u32) -> u32 {
+    fn texel_at<const D: u8>(&self, lod: usize, s: u32, t: u32) -> u32 {
+        if D == Decode::CACHED {
+            return self.cache.texel(lod, self.layout.smax(lod) + 1, s, t);
+        }
+        let addr = self.layout.texel_addr(lod, s, t);
         let byte = |a: u32| u32::from(self.ram[(a & self.ram_mask) as usize]);
         if D == Decode::LUT8 {
             return self.texel_lut[byte(addr) as usize];
@@ -164,10 +202,7 @@ impl Tmu {
         if TextureMode(self.texture_mode).tclampt() {
             t = t.clamp(0, tmax);
         }
-        self.fetch::<D>(
-            self.layout
-                .texel_addr(lod, (s & smax) as u32, (t & tmax) as u32),
-        )
+        self.texel_at::<D>(lod, (s & smax) as u32, (t & tmax) as u32)
     }
 
     /// Bilinear filtering; `s`, `t` are 24.8 at this LOD with half a texel subtracted.
@@ -178,10 +213,10 @@ impl Tmu {
         let mode = TextureMode(self.texture_mode);
         let (s0, s1) = neighbours(s >> 8, smax, mode.tclamps());
         let (t0, t1) = neighbours(t >> 8, tmax, mode.tclampt());
-        let c00 = self.fetch::<D>(self.layout.texel_addr(lod, s0, t0));
-        let c01 = self.fetch::<D>(self.layout.texel_addr(lod, s1, t0));
-        let c10 = self.fetch::<D>(self.layout.texel_addr(lod, s0, t1));
-        let c11 = self.fetch::<D>(self.layout.texel_addr(lod, s1, t1));
+        let c00 = self.texel_at::<D>(lod, s0, t0);
+        let c01 = self.texel_at::<D>(lod, s1, t0);
+        let c10 = self.texel_at::<D>(lod, s0, t1);
+        let c11 = self.texel_at::<D>(lod, s1, t1);
         let (sf, tf) = ((s & 0xff) as u32, (t & 0xff) as u32);
         match self.profile.bilinear {
             BilinearPrecision::Bits4 => {

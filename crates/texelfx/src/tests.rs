@@ -619,3 +619,68 @@ fn persp_divide_profile() {
     });
     assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
 }
+
+/// Every write that changes a texel reaches the next triangle through the decoded-texel
+/// cache; writes that change nothing keep the decoded level.
+#[test]
+fn texel_cache_sees_every_write_and_keeps_what_is_unchanged() {
+    let mut tmu = rgb565_8x8(0);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    assert!(tmu.cache.has(5));
+
+    // A download elsewhere (LOD 4) keeps LOD 5; one over texel (3, 2) drops it.
+    tmu.write_texture(addr16(4, 0, 0), 0xffff_ffff);
+    assert!(tmu.cache.has(5));
+    tmu.write_texture(addr16(5, 2, 2), 0x001f_f800);
+    assert!(!tmu.cache.has(5));
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), BLUE);
+    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), RED);
+
+    // Combine bits and tDetail leave the texels alone.
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(10) | DECAL | BILINEAR);
+    tmu.write_reg(addr::T_DETAIL, 0x1234);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(10) | DECAL);
+    assert!(tmu.cache.has(5));
+    // An NCC table write does not change RGB565 texels.
+    tmu.write_reg(addr::NCC_TABLE0, 0x0000_7700);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), BLUE);
+    assert!(tmu.cache.has(5));
+
+    // A new base address moves the texture: texel (3, 2) now reads LOD 5 of a chain 8
+    // bytes higher, i.e. the stored texel (7, 2) (white).
+    tmu.write_reg(addr::TEX_BASE_ADDR, 1);
+    assert!(!tmu.cache.has(5));
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), WHITE);
+    // A format change re-decodes the same bytes: 0xffff as ARGB1555.
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(11) | DECAL);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), WHITE);
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(12) | DECAL);
+    tmu.write_reg(addr::TEX_BASE_ADDR, 0);
+    // 0xf800 (texel (2, 2) after the rewrite above) as ARGB4444: a=f, r=8, g=b=0.
+    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), rgba([0x88, 0, 0, 0xff]));
+}
+
+/// Palette writes reach P8 texels already decoded; the cached and the reference path
+/// sample every texel of a level alike.
+#[test]
+fn texel_cache_palette_and_reference_path_agree() {
+    let mut tmu = one_texel(5, 7);
+    tmu.write_reg(addr::NCC_TABLE0 + 7 * 4, 0x8312_3456);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), rgba([0x12, 0x34, 0x56, 0xff]));
+    tmu.write_reg(addr::NCC_TABLE0 + 7 * 4, 0x8365_4321);
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), rgba([0x65, 0x43, 0x21, 0xff]));
+
+    let mut cached = rgb565_8x8(BILINEAR);
+    let mut reference = rgb565_8x8(BILINEAR);
+    reference.set_reference(true);
+    for dy in -9..9 {
+        for dx in -9..9 {
+            assert_eq!(
+                cached.texel(dx, dy, dx, dy, BLACK),
+                reference.texel(dx, dy, dx, dy, BLACK),
+                "({dx}, {dy})"
+            );
+        }
+    }
+    assert!(cached.cache.has(5) && !reference.cache.has(5));
+}

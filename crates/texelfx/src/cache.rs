@@ -1,0 +1,151 @@
+//! Decoded-texel cache: the texels of the bound texture, decoded to ARGB one LOD at a time
+//! on first use.
+//!
+//! The hardware reads texels from its memory for every pixel; decoding them again for
+//! every pixel (and for every one of the four bilinear neighbours) costs more than reading
+//! a decoded copy. A level is decoded with the same fetch the uncached path uses
+//! ([`crate::Tmu::set_reference`] turns the cache off), so both give identical texels:
+//! `crates/board/tests/reference_vs_fast.rs` replays every trace both ways.
+//!
+//! A cached level is dropped exactly when something it was decoded from changes:
+//! - a texture download that writes a byte inside the level's memory span;
+//! - a change of the texture's layout (`textureMode` format, `tLOD`, `texBaseAddr*`);
+//! - a change of the 256-entry decode table (format, NCC table in use, palette, profile).
+//!
+//! Register writes that leave all three alone (the combine bits of `textureMode`, `tDetail`,
+//! an NCC table the format does not use) keep the cache. Writes arrive between triangles,
+//! so the next triangle always sees them.
+
+use crate::layout::Layout;
+
+/// Decoded levels of the bound texture.
+pub(crate) struct TexelCache {
+    /// Decoded texels (`0xAARRGGBB`) of each LOD, row-major with `smax(lod) + 1` per row.
+    levels: [Vec<u32>; 9],
+    /// Bit n set when `levels[n]` holds LOD n of the current texture.
+    valid: u16,
+    /// Memory span `(first byte, length)` each valid level was decoded from.
+    spans: [(u32, u32); 9],
+}
+
+impl TexelCache {
+    /// An empty cache.
+    pub fn new() -> Self {
+        Self {
+            levels: Default::default(),
+            valid: 0,
+            spans: [(0, 0); 9],
+        }
+    }
+
+    /// Drops every level.
+    pub fn clear(&mut self) {
+        self.valid = 0;
+    }
+
+    /// Whether LOD `lod` is decoded.
+    #[inline(always)]
+    pub fn has(&self, lod: usize) -> bool {
+        self.valid >> lod & 1 != 0
+    }
+
+    /// Stores LOD `lod` of `layout`, decoded into `texels`.
+    pub fn fill(&mut self, lod: usize, layout: &Layout, texels: Vec<u32>) {
+        let len = (texels.len() as u32) << layout.bpp_shift;
+        self.spans[lod] = (layout.lod_base[lod], len);
+        self.levels[lod] = texels;
+        self.valid |= 1 << lod;
+    }
+
+    /// A buffer to decode LOD `lod` into: the level's old storage, emptied.
+    pub fn take_buffer(&mut self, lod: usize) -> Vec<u32> {
+        self.valid &= !(1 << lod);
+        let mut v = std::mem::take(&mut self.levels[lod]);
+        v.clear();
+        v
+    }
+
+    /// The decoded texel `(s, t)` of a valid LOD whose rows are `width` texels wide.
+    #[inline(always)]
+    pub fn texel(&self, lod: usize, width: u32, s: u32, t: u32) -> u32 {
+        let level = &self.levels[lod];
+        let i = (t * width + s) as usize;
+        // A valid level holds every (s, t) of the layout it was decoded for; the fallback
+        // only guards against a caller bug.
+        level.get(i).copied().unwrap_or(0)
+    }
+
+    /// Memory bytes `[addr, addr + len)` (wrapping at `mem_mask + 1`) were written: drops
+    /// every level decoded from one of them.
+    pub fn written(&mut self, addr: u32, len: u32, mem_mask: u32) {
+        let mut valid = self.valid;
+        while valid != 0 {
+            let lod = valid.trailing_zeros() as usize;
+            valid &= valid - 1;
+            let (start, span) = self.spans[lod];
+            let overlaps = (addr.wrapping_sub(start) & mem_mask) < span
+                || (start.wrapping_sub(addr) & mem_mask) < len;
+            if overlaps {
+                self.valid &= !(1 << lod);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MEM: u32 = (1 << 20) - 1;
+
+    fn cache_with_level(lod: usize, base_units: u32) -> (TexelCache, Layout) {
+        // 16-bit texels, 256x256 LOD 0.
+        let layout = Layout::new(10 << 8, 0, &[base_units, 0, 0, 0], MEM);
+        let mut c = TexelCache::new();
+        let n = ((layout.smax(lod) + 1) * (layout.tmax(lod) + 1)) as usize;
+        c.fill(lod, &layout, vec![7; n]);
+        (c, layout)
+    }
+
+    #[test]
+    fn write_inside_a_level_drops_only_that_level() {
+        let (mut c, layout) = cache_with_level(2, 0);
+        let n = ((layout.smax(3) + 1) * (layout.tmax(3) + 1)) as usize;
+        c.fill(3, &layout, vec![1; n]);
+        // LOD 2 of 64x64 16-bit texels: 0x2000 bytes from 0x28000.
+        assert_eq!(layout.lod_base[2], 0x28000);
+        c.written(0x27ffc, 4, MEM);
+        assert!(c.has(2) && c.has(3), "the word before the level");
+        c.written(0x29ffc, 4, MEM);
+        assert!(!c.has(2), "the level's last word");
+        assert!(c.has(3));
+        c.written(0x2a000, 2, MEM);
+        assert!(!c.has(3), "LOD 3's first texel");
+    }
+
+    #[test]
+    fn spans_wrap_at_the_end_of_memory() {
+        // LOD 0 of 0x20000 bytes starting 0x8000 below the end of 1 MiB.
+        let (mut c, _) = cache_with_level(0, (MEM + 1 - 0x8000) >> 3);
+        c.written(0x10_0000 + 0x20000 - 0x8000, 4, MEM);
+        assert!(c.has(0), "first byte after the wrapped level");
+        c.written(0x100, 4, MEM);
+        assert!(!c.has(0), "wrapped part of the level");
+    }
+
+    #[test]
+    fn a_write_straddling_the_level_start_drops_it() {
+        let (mut c, layout) = cache_with_level(1, 0);
+        c.written(layout.lod_base[1] - 2, 4, MEM);
+        assert!(!c.has(1));
+    }
+
+    #[test]
+    fn texel_lookup_and_clear() {
+        let (mut c, layout) = cache_with_level(1, 0);
+        assert_eq!(c.texel(1, layout.smax(1) + 1, 5, 9), 7);
+        c.clear();
+        assert!(!c.has(1));
+        assert!(c.take_buffer(1).is_empty());
+    }
+}
