@@ -20,4 +20,11 @@ impl TexelSource for Chain<'_> {
         }
         other
     }
+
+    #[inline]
+    fn begin_span(&mut self, dx: i32, dy: i32, len: usize) {
+        for t in self.tmus.iter_mut() {
+            t.begin_span(dx, dy, len);
+        }
+    }
 }

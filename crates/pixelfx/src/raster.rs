@@ -14,6 +14,12 @@ pub trait TexelSource {
     /// The texel for the pixel at offset `(dx, dy)` from vertex A's pixel, at screen
     /// position `(x, y)`.
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba;
+
+    /// A span of `len` pixels from offset `(dx, dy)` rightwards is about to be shaded: a
+    /// source may compute per-pixel values for all of them at once here. Optional; the
+    /// texels must not depend on whether it was called.
+    #[inline]
+    fn begin_span(&mut self, _dx: i32, _dy: i32, _len: usize) {}
 }
 
 /// The source for untextured drawing: always zero.
@@ -107,6 +113,7 @@ impl Fbi {
             let mut it = Iterated::at(&params, start - ax, dy);
             let mut stipple = st.stipple;
             let prow = self.pattern_row(span.y, scry);
+            tex.begin_span(start - ax, dy, (stop - start) as usize);
             for x in start..stop {
                 let r = self.shade::<CP, AM, FM, ZM>(
                     st,

@@ -30,6 +30,7 @@ mod sample;
 
 use cache::TexelCache;
 use layout::Layout;
+use sample::SpanRecip;
 use sst1_chain::{detail_factor, Factors, TextureCombine};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
@@ -279,6 +280,8 @@ pub struct Tmu {
     cache: TexelCache,
     /// Sample through `cache` (off: decode every texel from memory, the reference path).
     cached: bool,
+    /// Perspective factors of the span being shaded.
+    span: SpanRecip,
 }
 
 /// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero.
@@ -338,6 +341,7 @@ impl Tmu {
             passthrough: false,
             cache: TexelCache::new(),
             cached: true,
+            span: SpanRecip::default(),
         }
     }
 
@@ -443,8 +447,25 @@ impl Tmu {
     /// Called at the start of each triangle, after its register writes: computes the base
     /// LOD from the S/T gradients.
     pub fn begin_triangle(&mut self) {
+        self.span.clear();
         let g = [self.ddx[0], self.ddy[0], self.ddx[1], self.ddy[1]];
         self.lod_base = lod::lod_base(self.profile.lod, g, self.t_lod);
+    }
+
+    /// The FBI is about to shade `len` pixels from offset `(dx, dy)` (as in [`Tmu::texel`])
+    /// rightwards: computes their perspective factors in one loop (see `SpanRecip`).
+    /// Optional; texels are the same without it. The reference path
+    /// ([`Tmu::set_reference`]) skips it.
+    pub fn begin_span(&mut self, dx: i32, dy: i32, len: usize) {
+        let persp = TextureMode(self.texture_mode).tpersp_st();
+        if !self.cached || !persp || self.profile.persp_divide != PerspDivide::Double {
+            self.span.clear();
+            return;
+        }
+        let w0 = self.start[2]
+            .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[2]))
+            .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[2]));
+        self.span.fill(dx, dy, len, w0, self.ddx[2]);
     }
 
     /// Subpixel correction of the S/T/W start registers (`fbzColorPath` bit 26):
@@ -474,7 +495,8 @@ impl Tmu {
                 .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[i]))
                 .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
         };
-        let smp = self.sample(at(0), at(1), at(2), x, y);
+        let recip = self.span.get(dx, dy);
+        let smp = self.sample(at(0), at(1), at(2), x, y, recip);
         let [r, g, b, a] = if self.passthrough {
             smp.texel
         } else {

@@ -34,7 +34,16 @@ pub(crate) struct Sample {
 
 impl Tmu {
     /// Fetches the texel for iterated S, T (.32, i.e. 14.18 << 14) and W (.32, 2.30 << 2).
-    pub(crate) fn sample(&mut self, iters: i64, itert: i64, iterw: i64, x: i32, y: i32) -> Sample {
+    /// `recip`: `256 / W` from [`SpanRecip`] when it holds this pixel.
+    pub(crate) fn sample(
+        &mut self,
+        iters: i64,
+        itert: i64,
+        iterw: i64,
+        x: i32,
+        y: i32,
+        recip: Option<f64>,
+    ) -> Sample {
         let mode = TextureMode(self.texture_mode);
         let persp = mode.tpersp_st();
         let floor = self.profile.coord_rounding == CoordRounding::Floor;
@@ -47,7 +56,7 @@ impl Tmu {
             let div = |v: i64| (oow.wrapping_mul(v) >> 29) as i32 >> 10;
             (div(iters), div(itert))
         } else if persp {
-            let recip = 256.0 / iterw as f64;
+            let recip = recip.unwrap_or_else(|| span_recip(iterw));
             let div = |v: i64| {
                 let q = v as f64 * recip;
                 let i = f64_to_i32_x86(q);
@@ -238,6 +247,60 @@ impl Tmu {
                 out
             }
         }
+    }
+}
+
+/// `256 / W` in double precision, the factor of MAME's perspective divide
+/// ([`PerspDivide::Double`]).
+#[inline(always)]
+fn span_recip(iterw: i64) -> f64 {
+    256.0 / iterw as f64
+}
+
+/// The perspective factors `256 / W` of the pixels of one span, computed in one loop
+/// before the span is shaded: the divides are independent there and overlap, where one
+/// per pixel inside the pixel pipeline stalls it. Values are exactly those
+/// [`Tmu::sample`] would compute itself.
+#[derive(Default)]
+pub(crate) struct SpanRecip {
+    /// Pixel offset from vertex A of the first value.
+    dx0: i32,
+    /// Row offset from vertex A.
+    dy: i32,
+    /// `256 / W` per pixel from `dx0` on; empty when not computed.
+    values: Vec<f64>,
+}
+
+impl SpanRecip {
+    /// Computes the factors of `len` pixels from `(dx0, dy)`; `w0` is W (.32) at the first
+    /// pixel and `dwdx` its step.
+    pub fn fill(&mut self, dx0: i32, dy: i32, len: usize, w0: i64, dwdx: i64) {
+        self.dx0 = dx0;
+        self.dy = dy;
+        self.values.clear();
+        let mut w = w0;
+        self.values.extend((0..len).map(|_| {
+            let r = span_recip(w);
+            // Wrapping adds give `start + dx * dWdX` mod 2^64, as the per-pixel form.
+            w = w.wrapping_add(dwdx);
+            r
+        }));
+    }
+
+    /// Forgets the span.
+    pub fn clear(&mut self) {
+        self.values.clear();
+    }
+
+    /// The factor of pixel `(dx, dy)`, if this span holds it.
+    #[inline(always)]
+    pub fn get(&self, dx: i32, dy: i32) -> Option<f64> {
+        if dy != self.dy {
+            return None;
+        }
+        self.values
+            .get(dx.wrapping_sub(self.dx0) as u32 as usize)
+            .copied()
     }
 }
 
