@@ -9,7 +9,7 @@ use firmware_tests::expect::{blend, dither565, fog_blend, Blend};
 use firmware_tests::{
     fastfill, rgb565_truncated, set_clip, triangle_fixed, Buffer, Emulator, Param, Port, Triangle,
 };
-use pixelfx::blend::{BlendArithmetic, BlendProfile, SaturateOperand};
+use pixelfx::blend::{BlendArithmetic, BlendProfile, Dither2x2Blend, SaturateOperand};
 use pixelfx::fog::{
     FogBothSources, FogConstantMult, FogDifference, FogIteratedAlpha, FogProfile, FogTableDepth,
 };
@@ -451,6 +451,53 @@ fn blend_arithmetic_dosbox() {
 fn blend_arithmetic_exact255() {
     assert_eq!(blend_expected(Blend::Box86), 0x93ce);
     assert_eq!(blend_program(BlendArithmetic::Exact255), 0x93ce);
+}
+
+/// `blend_program`'s blend with dithering on, pixel (4, 4): with the 2x2 dither (classic
+/// entry 2) or the 4x4 dither (entry 0). MAME's arithmetic gives (145, 124, 116), DOSBox
+/// Staging's (142, 123, 113): blue dithers to 14 and 13.
+fn dither_2x2_blend_program(dither_2x2: Dither2x2Blend, fbz_dither: u32) -> u16 {
+    let blend_profile = BlendProfile {
+        dither_2x2,
+        ..Default::default()
+    };
+    let mut p = board(PixelProfile {
+        blend: blend_profile,
+        ..Default::default()
+    });
+    fastfill(&mut p, 0x0080_8080, 0xffff);
+    p.write(addr::FBZ_MODE, BASE | fbz::DITHER | fbz_dither);
+    p.write(addr::ALPHA_MODE, alpha::BLEND | alpha::rgb_factors(1, 5));
+    triangle_fixed(&mut p, &flat(0x30c8_6432));
+    p.read_pixel(Buffer::Back, 4, 4)
+}
+
+fn dithered_blend(a: Blend, d: u32) -> u16 {
+    let [r, g, b] = blend(a, [200, 100, 50], 0x30, 0x8410, (1, 5));
+    dither565(r, g, b, d)
+}
+
+/// `Dither2x2Blend::Dosbox` (default): 2x2-dithered pixels blend with DOSBox Staging's
+/// arithmetic (the classic matrix's pairing); 4x4-dithered ones keep `arithmetic` (MAME).
+#[test]
+fn dither_2x2_blend_dosbox() {
+    assert_eq!(dithered_blend(Blend::Dosbox, 2), 0x8bcd);
+    assert_eq!(
+        dither_2x2_blend_program(Dither2x2Blend::Dosbox, fbz::DITHER_2X2),
+        0x8bcd
+    );
+    assert_eq!(dithered_blend(Blend::Mame, 0), 0x8bce);
+    assert_eq!(dither_2x2_blend_program(Dither2x2Blend::Dosbox, 0), 0x8bce);
+}
+
+/// `Dither2x2Blend::SameAsArithmetic`: every pixel blends with `arithmetic` (MAME).
+#[test]
+fn dither_2x2_blend_same_as_arithmetic() {
+    assert_eq!(dithered_blend(Blend::Mame, 2), 0x8bce);
+    assert_eq!(
+        dither_2x2_blend_program(Dither2x2Blend::SameAsArithmetic, fbz::DITHER_2X2),
+        0x8bce
+    );
 }
 
 /// ASATURATE / AZERO with alpha planes (destination alpha 0x30), source alpha 0x60:
