@@ -410,21 +410,28 @@ fn fog_both_sources_iterated_z() {
 
 // --- alpha blending: BlendArithmetic, SaturateOperand ----------------------------------
 
-/// (200, 100, 50) at alpha 0x30 blended with ASRC_ALPHA / AOMSRC_ALPHA over 0x8410:
-/// the three arithmetics give three different pixels (0x93ee, 0x8bce, 0x93ce).
-fn blend_program(arithmetic: BlendArithmetic) -> u16 {
-    let blend_profile = BlendProfile {
-        arithmetic,
-        ..Default::default()
-    };
+/// (200, 100, 50) at alpha 0x30 blended with ASRC_ALPHA / AOMSRC_ALPHA over 0x8410 with
+/// `fbzMode` bits `fbz_extra` added; pixel (4, 4).
+fn blended_pixel(blend: BlendProfile, fbz_extra: u32) -> u16 {
     let mut p = board(PixelProfile {
-        blend: blend_profile,
+        blend,
         ..Default::default()
     });
     fastfill(&mut p, 0x0080_8080, 0xffff);
+    p.write(addr::FBZ_MODE, BASE | fbz_extra);
     p.write(addr::ALPHA_MODE, alpha::BLEND | alpha::rgb_factors(1, 5));
     triangle_fixed(&mut p, &flat(0x30c8_6432));
     p.read_pixel(Buffer::Back, 4, 4)
+}
+
+/// [`blended_pixel`] undithered: the three arithmetics give three different pixels
+/// (0x93ee, 0x8bce, 0x93ce).
+fn blend_program(arithmetic: BlendArithmetic) -> u16 {
+    let blend = BlendProfile {
+        arithmetic,
+        ..Default::default()
+    };
+    blended_pixel(blend, 0)
 }
 
 fn blend_expected(a: Blend) -> u16 {
@@ -457,19 +464,11 @@ fn blend_arithmetic_exact255() {
 /// entry 2) or the 4x4 dither (entry 0). MAME's arithmetic gives (145, 124, 116), DOSBox
 /// Staging's (142, 123, 113): blue dithers to 14 and 13.
 fn dither_2x2_blend_program(dither_2x2: Dither2x2Blend, fbz_dither: u32) -> u16 {
-    let blend_profile = BlendProfile {
+    let blend = BlendProfile {
         dither_2x2,
         ..Default::default()
     };
-    let mut p = board(PixelProfile {
-        blend: blend_profile,
-        ..Default::default()
-    });
-    fastfill(&mut p, 0x0080_8080, 0xffff);
-    p.write(addr::FBZ_MODE, BASE | fbz::DITHER | fbz_dither);
-    p.write(addr::ALPHA_MODE, alpha::BLEND | alpha::rgb_factors(1, 5));
-    triangle_fixed(&mut p, &flat(0x30c8_6432));
-    p.read_pixel(Buffer::Back, 4, 4)
+    blended_pixel(blend, fbz::DITHER | fbz_dither)
 }
 
 fn dithered_blend(a: Blend, d: u32) -> u16 {
