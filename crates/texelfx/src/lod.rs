@@ -224,7 +224,7 @@ pub(crate) fn pixel_lod(
         LodCalc::Box86 => {
             if let Some(w) = p.persp_w {
                 // 1/W as 16.16 from a 64-bit divide; a negative W is a huge unsigned value.
-                let recip = if w != 0 { (1u64 << 48) / (w as u64) } else { 0 };
+                let recip = crate::sample::box86_oow(w) as u64;
                 lod = lod.wrapping_add(log2_86box(recip).wrapping_sub(19 << 8));
             }
         }

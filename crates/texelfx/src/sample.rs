@@ -1,10 +1,9 @@
 //! Texture coordinate computation and texel fetch: perspective divide, `tclampw`, LOD,
 //! clamp/wrap, point sampling and bilinear filtering (spec 5.50, 5.51).
 //!
-//! Coordinates become 24.8 texels of LOD 0: `S/W * 256` with a double-precision divide when
-//! `tpersp_st` is set, else `S >> 24` (rounded as [`crate::CoordRounding`] says), then are
-//! shifted down by
-//! the integer LOD. Point sampling drops the fraction; bilinear first subtracts half a texel
+//! Coordinates become 24.8 texels of LOD 0: `S/W * 256` when `tpersp_st` is set (divided
+//! as [`crate::PerspDivide`] says), else `S >> 24` (rounded as [`crate::CoordRounding`]
+//! says), then are shifted down by the integer LOD. Point sampling drops the fraction; bilinear first subtracts half a texel
 //! and weighs the four neighbours by the top 4 bits of each fraction (the SST-1 keeps 4
 //! bits; Voodoo 2 keeps 8).
 //!
@@ -55,6 +54,9 @@ impl Tmu {
             let (oow, _) = crate::lod::reciplog_dosbox(iterw);
             let div = |v: i64| (oow.wrapping_mul(v) >> 29) as i32 >> 10;
             (div(iters), div(itert))
+        } else if persp && self.profile.persp_divide == PerspDivide::Box86 {
+            let oow = box86_oow(iterw);
+            (box86_divide(iters, oow), box86_divide(itert, oow))
         } else if persp {
             let recip = recip.unwrap_or_else(|| span_recip(iterw));
             let div = |v: i64| {
@@ -302,6 +304,34 @@ impl SpanRecip {
             .get(dx.wrapping_sub(self.dx0) as u32 as usize)
             .copied()
     }
+}
+
+/// 86Box's 1/W for the perspective divide: `2^48 / W` in unsigned 64-bit integers, with W
+/// .32 (so the quotient is 1/W as .16). A negative W is a huge unsigned divisor and gives
+/// 0, as does W = 0. Source: 86Box `voodoo_tmu_fetch`.
+pub(crate) fn box86_oow(iterw: i64) -> i64 {
+    if iterw == 0 {
+        0
+    } else {
+        ((1u64 << 48) / iterw as u64) as i64
+    }
+}
+
+/// 86Box's perspective-corrected coordinate: `S` (.32) rounded to .18, times 1/W (.16 from
+/// [`box86_oow`]), rounded to .4 and truncated to 32 bits; returned as 24.8 (`<< 4`, low
+/// four bits zero). Source: 86Box `voodoo_tmu_fetch` (its `tex_s` is this .4 value; its
+/// point sampling shifts it by `4 + lod` and its bilinear path subtracts `8 << lod` and
+/// takes the 4-bit fraction after `>> lod`, which select the same texels and weights as
+/// the 24.8 form does in [`Tmu::sample`]).
+///
+/// INACCURATE: the `<< 4` wraps for coordinates of 2^23 texels or more, where 86Box keeps
+/// the sign of its .4 value; only clamped coordinates can then differ.
+pub(crate) fn box86_divide(v: i64, oow: i64) -> i32 {
+    let st = (v.wrapping_add(1 << 13) >> 14)
+        .wrapping_mul(oow)
+        .wrapping_add(1 << 29)
+        >> 30;
+    (st as i32).wrapping_shl(4)
 }
 
 /// `sum(texel[i] * weight[i]) >> 8` per channel of four ARGB texels, with weights that

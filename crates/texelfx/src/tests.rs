@@ -723,3 +723,38 @@ fn span_perspective_factors_match_per_pixel_divide() {
     assert_eq!(spans.span.get(34, 3), None);
     assert_eq!(spans.span.get(0, 2), None);
 }
+
+#[test]
+fn box86_divide_arithmetic() {
+    use crate::sample::{box86_divide, box86_oow};
+    // 2^48 / W (.32), truncated; W <= 0 gives 0.
+    assert_eq!(box86_oow(1 << 32), 1 << 16);
+    assert_eq!(box86_oow(3 << 30), 87381); // 2^18 / 3 = 87381.33
+    assert_eq!(box86_oow(0), 0);
+    assert_eq!(box86_oow(-(1 << 32)), 0);
+    // 128 / 0.75 = 170.67 texels: (2^25 * 87381 + 2^29) >> 30 = 2731 sixteenths, as 24.8.
+    assert_eq!(box86_divide(128 << 32, 87381), 2731 << 4);
+    // Rounded to the nearest 1/16 texel, halves up: 1 + 1/32 -> 17/16; a hair less -> 16/16.
+    assert_eq!(box86_divide((1 << 32) + (1 << 27), 1 << 16), 17 << 4);
+    assert_eq!(
+        box86_divide((1 << 32) + (1 << 27) - (1 << 14), 1 << 16),
+        16 << 4
+    );
+    // S is first rounded to .18 with an arithmetic shift: -1 texel stays -16 sixteenths.
+    assert_eq!(box86_divide(-(1 << 32), 1 << 16), -16 << 4);
+}
+
+#[test]
+fn persp_divide_box86_profile() {
+    // W = 1, S = 128 - 1/1024 LOD-0 texels: a hair left of texel 4 (green) of LOD 5.
+    // MAME's truncated quotient stays in texel 3 (red); 86Box rounds it to 128.0.
+    let mut tmu = rgb565_8x8(PERSP);
+    set_iter(&mut tmu, tex(128) - 256, tex(80), tex(32), tex(32), ONE_W);
+    tmu.begin_triangle();
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    tmu.set_profile(TexelProfile {
+        persp_divide: PerspDivide::Box86,
+        ..TexelProfile::default()
+    });
+    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN);
+}
