@@ -547,10 +547,13 @@ pub mod expect {
     /// `Dnew = S*alpha + Dold*beta`).
     #[derive(Clone, Copy, Debug, PartialEq, Eq)]
     pub enum Blend {
-        /// 565 widened by replicating high bits; factor x as x+1, 1-x as 256-x; each
-        /// product shifted right by 8.
+        /// 565 widened by replicating high bits; factor x as x+1, 1-x as 256-x; the sum
+        /// of the two products shifted right by 8.
         Mame,
-        /// As MAME but widened with zero low bits.
+        /// As MAME but each product shifted right by 8 (the emulator's default
+        /// `BlendArithmetic::PerProduct`).
+        PerProduct,
+        /// As `PerProduct` but widened with zero low bits.
         Dosbox,
         /// Replicated widening; factors x and 255-x, each product divided by 255.
         Box86,
@@ -589,7 +592,11 @@ pub mod expect {
         std::array::from_fn(|i| {
             let fs = factor(factors.0, d[i]);
             let fd = factor(factors.1, s[i]);
-            ((s[i] * fs) / div + (d[i] * fd) / div).min(255)
+            if arith == Blend::Mame {
+                ((s[i] * fs + d[i] * fd) / div).min(255)
+            } else {
+                ((s[i] * fs) / div + (d[i] * fd) / div).min(255)
+            }
         })
     }
 }

@@ -410,9 +410,9 @@ fn fog_both_sources_iterated_z() {
 
 // --- alpha blending: BlendArithmetic, SaturateOperand ----------------------------------
 
-/// (200, 100, 50) at alpha 0x30 blended with ASRC_ALPHA / AOMSRC_ALPHA over 0x8410 with
-/// `fbzMode` bits `fbz_extra` added; pixel (4, 4).
-fn blended_pixel(blend: BlendProfile, fbz_extra: u32) -> u16 {
+/// (200, 100, 50) at alpha `alpha` blended with ASRC_ALPHA / AOMSRC_ALPHA over 0x8410
+/// with `fbzMode` bits `fbz_extra` added; pixel (4, 4).
+fn blended_pixel(blend: BlendProfile, fbz_extra: u32, alpha: u32) -> u16 {
     let mut p = board(PixelProfile {
         blend,
         ..Default::default()
@@ -420,18 +420,18 @@ fn blended_pixel(blend: BlendProfile, fbz_extra: u32) -> u16 {
     fastfill(&mut p, 0x0080_8080, 0xffff);
     p.write(addr::FBZ_MODE, BASE | fbz_extra);
     p.write(addr::ALPHA_MODE, alpha::BLEND | alpha::rgb_factors(1, 5));
-    triangle_fixed(&mut p, &flat(0x30c8_6432));
+    triangle_fixed(&mut p, &flat(alpha << 24 | 0x00c8_6432));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 
-/// [`blended_pixel`] undithered: the three arithmetics give three different pixels
+/// [`blended_pixel`] at alpha 0x30, undithered: the three arithmetics give three different pixels
 /// (0x93ee, 0x8bce, 0x93ce).
 fn blend_program(arithmetic: BlendArithmetic) -> u16 {
     let blend = BlendProfile {
         arithmetic,
         ..Default::default()
     };
-    blended_pixel(blend, 0)
+    blended_pixel(blend, 0, 0x30)
 }
 
 fn blend_expected(a: Blend) -> u16 {
@@ -439,11 +439,30 @@ fn blend_expected(a: Blend) -> u16 {
     rgb565_truncated(r, g, b)
 }
 
-/// `BlendArithmetic::Mame` (default): replicated destination, `x+1` / `256-x`, `>> 8`.
+/// `BlendArithmetic::PerProduct` (default): replicated destination, `x+1` / `256-x`,
+/// each product `>> 8`.
+#[test]
+fn blend_arithmetic_per_product() {
+    assert_eq!(blend_expected(Blend::PerProduct), 0x93ee);
+    assert_eq!(blend_program(BlendArithmetic::PerProduct), 0x93ee);
+}
+
+/// `BlendArithmetic::Mame`: as `PerProduct`, but the sum of the products `>> 8` once. At
+/// alpha 0x30 both give 0x93ee; at 0x32 they differ in green: 0x93ee against
+/// `PerProduct`'s 0x93ce.
 #[test]
 fn blend_arithmetic_mame() {
     assert_eq!(blend_expected(Blend::Mame), 0x93ee);
     assert_eq!(blend_program(BlendArithmetic::Mame), 0x93ee);
+    let at_0x32 = |arithmetic| {
+        let blend = BlendProfile {
+            arithmetic,
+            ..Default::default()
+        };
+        blended_pixel(blend, 0, 0x32)
+    };
+    assert_eq!(at_0x32(BlendArithmetic::Mame), 0x93ee);
+    assert_eq!(at_0x32(BlendArithmetic::PerProduct), 0x93ce);
 }
 
 /// `BlendArithmetic::Dosbox`: zero-filled destination, otherwise as MAME.
@@ -468,7 +487,7 @@ fn dither_2x2_blend_program(dither_2x2: Dither2x2Blend, fbz_dither: u32) -> u16 
         dither_2x2,
         ..Default::default()
     };
-    blended_pixel(blend, fbz::DITHER | fbz_dither)
+    blended_pixel(blend, fbz::DITHER | fbz_dither, 0x30)
 }
 
 fn dithered_blend(a: Blend, d: u32) -> u16 {
@@ -485,14 +504,14 @@ fn dither_2x2_blend_dosbox() {
         dither_2x2_blend_program(Dither2x2Blend::Dosbox, fbz::DITHER_2X2),
         0x8bcd
     );
-    assert_eq!(dithered_blend(Blend::Mame, 0), 0x8bce);
+    assert_eq!(dithered_blend(Blend::PerProduct, 0), 0x8bce);
     assert_eq!(dither_2x2_blend_program(Dither2x2Blend::Dosbox, 0), 0x8bce);
 }
 
 /// `Dither2x2Blend::SameAsArithmetic`: every pixel blends with `arithmetic` (MAME).
 #[test]
 fn dither_2x2_blend_same_as_arithmetic() {
-    assert_eq!(dithered_blend(Blend::Mame, 2), 0x8bce);
+    assert_eq!(dithered_blend(Blend::PerProduct, 2), 0x8bce);
     assert_eq!(
         dither_2x2_blend_program(Dither2x2Blend::SameAsArithmetic, fbz::DITHER_2X2),
         0x8bce

@@ -22,23 +22,24 @@
 use serde::{Deserialize, Serialize};
 use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 
-/// How the blend is computed. Each variant reproduces one reference's arithmetic as a
-/// whole: destination widening, dither subtraction, factor scale and rounding.
+/// How the blend is computed: destination widening, dither subtraction, factor scale and
+/// rounding. `Mame`, `Dosbox` and `Exact255` each reproduce one reference's arithmetic as
+/// a whole; `PerProduct` (the default) is a hybrid of MAME's and DOSBox Staging's.
 ///
 /// | | widening of 565 | dither subtraction (bit 19) | factors, rounding |
 /// |---|---|---|---|
-/// | `Mame` | replicate high bits | only with dithering on: `+(15-d)>>1` R/B, `+(15-d)>>2` G | `x+1` and `256-x` (0..=256), each product `>> 8`, then add |
-/// | `MameSumOnce` | as `Mame` | as `Mame` | as `Mame`, but the two products are added and the sum shifted `>> 8` once |
+/// | `PerProduct` | replicate high bits | only with dithering on: `+(15-d)>>1` R/B, `+(15-d)>>2` G | `x+1` and `256-x` (0..=256), each product `>> 8`, then add |
+/// | `Mame` | as `PerProduct` | as `PerProduct` | as `PerProduct`, but the two products are added and the sum shifted `>> 8` once |
 /// | `Dosbox` | zero-fill low bits | as MAME | as MAME |
 /// | `Exact255` | replicate high bits | also with dithering off: 86Box's tables, see below | `x` and `255-x`, each product `/ 255` (truncating), then add |
 ///
-/// MAME's rounding is that of `MameSumOnce`: its `alpha_blend` ends in
+/// MAME's rounding is that of `Mame`: its `alpha_blend` ends in
 /// `rgbaint_t::scale2_add_and_clamp`, which in both the SSE2 build (`rgbsse.h`: the two
 /// 16-bit products summed by one `_mm_madd_epi16`, then `>> 8`) and the portable one
 /// (`rgbgen.h`: `mul`, `add`, then `sra_imm(8)`) rounds the sum once. The MAME goldens
-/// confirm it: with `MameSumOnce` (all other switches at their defaults) ours equal
+/// confirm it: with `Mame` (all other switches at their defaults) ours equal
 /// MAME's dump on every pixel of `alpha_blend` (307200 of 307200, against 300709 with
-/// `Mame`) and `tex_8bit_formats` (307200, against 270159). `Mame`, rounding each
+/// `PerProduct`) and `tex_8bit_formats` (307200, against 270159). `PerProduct`, rounding each
 /// product, is therefore no reference's arithmetic: it is a hybrid that happens to sit
 /// closer to the DOSBox/86Box majority where MAME is the odd one out.
 ///
@@ -51,29 +52,30 @@ use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 /// alpha unclamped (up to 510) in the aux buffer; here it is clamped to 255 in every
 /// variant (INACCURATE for 86Box's `AONE`/`AONE` alpha above 255).
 ///
-/// Default: `Mame`. No two references share one arithmetic, so the default is the one
-/// that leaves the fewest pixels off the two-of-three majority over all conformance
-/// traces. Measured over the 41 feature traces (all other switches at their defaults):
-/// `Mame` 196 consensus + 226.6 k majority pixels, `Exact255` 957 + 297.2 k, `Dosbox`
-/// 1536 + 413.9 k; over the 18 glide-sdk traces `Mame` 28 + 55.2 k, `Exact255`
-/// 1564 + 45.2 k, `Dosbox` 26 + 41.1 k. (On the `alpha_blend` dump alone 86Box's
-/// arithmetic is closest: 2.5 k pixels against MAME's 7.4 k.)
+/// Default: `PerProduct`. No two references share one arithmetic and the spec gives only
+/// `Dnew = S*alpha + Dold*beta`, so the default is the one that leaves the fewest pixels
+/// off the two-of-three majority over all traces: with every other switch at its
+/// default, conformance traces (consensus + majority failures) `PerProduct` 36 + 184.2 k,
+/// `Mame` 185 + 299.0 k; glide-sdk traces `PerProduct` 5 + 34.7 k, `Mame` 5 + 49.5 k.
+/// (Measured before the `Mame` variant existed, as the per-product form was then
+/// believed to be MAME's: `Exact255` 957 + 297.2 k and `Dosbox` 1536 + 413.9 k on the
+/// conformance traces, 1564 + 45.2 k and 26 + 41.1 k on glide-sdk.) It is a deliberate
+/// deviation from every reference, listed with its pixel counts in
+/// `traces/known-failures.toml`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum BlendArithmetic {
-    /// MAME's widening and factors with each product rounded on its own (a hybrid, see
-    /// above).
+    /// MAME's widening and factors with each product rounded on its own, as DOSBox
+    /// Staging rounds (a hybrid, see above).
     #[default]
-    Mame,
-    /// MAME as its goldens show: the sum of the two products rounded once.
+    PerProduct,
+    /// MAME, as its source and its goldens show: the sum of the two products rounded once.
     ///
-    /// Measured with every other switch at its default (consensus and majority
-    /// failures): conformance traces 185 and 299.0 k (`Mame`: 145 and 184.5 k), glide-sdk
-    /// 5 and 49.5 k (`Mame`: 5 and 34.7 k). It clears the two consensus pixels of
+    /// It clears the two consensus pixels of
     /// `tmu2_combine` (603, 430 and 431): there MAME's sum (60 * 105 + 255 * 152) >> 8 =
     /// 176 gives red 22, which DOSBox (its combine inverts TMU 1's alpha) and 86Box (its
     /// LOD picks another texel) reach by other ways, while rounding each product gives
     /// 24 + 151 = 175.
-    MameSumOnce,
+    Mame,
     /// DOSBox Staging.
     Dosbox,
     /// 86Box: exact division by 255.
@@ -99,10 +101,10 @@ pub enum SaturateOperand {
 /// pass's dithered value) MAME's destinations differ from the other two references' by
 /// MAME's own 2x2 matrix, so the two-of-three majority is formed by DOSBox Staging and
 /// 86Box, whose blends are the classic matrix plus their own arithmetic. MAME's arithmetic
-/// with the classic matrix, which [`BlendArithmetic::Mame`] alone gives, is then no
+/// with the classic matrix, which [`BlendArithmetic::PerProduct`] alone gives, is then no
 /// reference's combination and drifts from all three over repeated blends.
 ///
-/// Measured with every other switch at its default (`arithmetic = Mame`,
+/// Measured with every other switch at its default (`arithmetic = PerProduct`,
 /// `dither_2x2 = Classic`): the only dump with blended 2x2-dithered pixels is
 /// `stress_random/front`. `Dosbox`: 12 consensus + 3956 majority failures there;
 /// `SameAsArithmetic`: 121 + 4339; `Exact255` for these pixels would give 67 + 4171.
@@ -152,7 +154,7 @@ pub struct BlendInput {
 #[inline(always)]
 fn scale(arithmetic: BlendArithmetic) -> (i32, i32) {
     match arithmetic {
-        BlendArithmetic::Mame | BlendArithmetic::MameSumOnce | BlendArithmetic::Dosbox => (256, 1),
+        BlendArithmetic::PerProduct | BlendArithmetic::Mame | BlendArithmetic::Dosbox => (256, 1),
         BlendArithmetic::Exact255 => (255, 0),
     }
 }
@@ -207,9 +209,11 @@ impl Channel {
         let sv = if self.saturate_dst { d } else { s };
         let (ts, td) = match self.arith {
             // Arithmetic shift: floor, as the references' signed shifts.
-            BlendArithmetic::Mame | BlendArithmetic::Dosbox => ((sv * fs) >> 8, (d * fd) >> 8),
+            BlendArithmetic::PerProduct | BlendArithmetic::Dosbox => {
+                ((sv * fs) >> 8, (d * fd) >> 8)
+            }
             // Source: MAME `scale2_add_and_clamp` (rgbsse.h, rgbgen.h).
-            BlendArithmetic::MameSumOnce => ((sv * fs + d * fd) >> 8, 0),
+            BlendArithmetic::Mame => ((sv * fs + d * fd) >> 8, 0),
             // C division: truncation toward zero (negative only for aux words above 255).
             BlendArithmetic::Exact255 => (sv * fs / 255, d * fd / 255),
         };
@@ -276,7 +280,7 @@ pub fn alpha_blend(
     if fbz_mode.dither_subtract() {
         let dv = input.dither_value as i32;
         match arith {
-            BlendArithmetic::Mame | BlendArithmetic::MameSumOnce | BlendArithmetic::Dosbox
+            BlendArithmetic::PerProduct | BlendArithmetic::Mame | BlendArithmetic::Dosbox
                 if fbz_mode.enable_dithering() =>
             {
                 let k = 15 - dv;
@@ -345,7 +349,7 @@ pub fn alpha_blend(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use BlendArithmetic::{Dosbox, Exact255, Mame, MameSumOnce};
+    use BlendArithmetic::{Dosbox, Exact255, Mame, PerProduct};
 
     const SRC: Rgba = Rgba {
         r: 200,
@@ -420,19 +424,23 @@ mod tests {
             (1, 14, [75, 37, 18], [75, 37, 18], [75, 37, 18]),
         ];
         for (s, d, mame, dosbox, exact) in cases {
-            assert_eq!(blend(Mame, s, d, 0, &input()), mame, "MAME {s} {d}");
+            assert_eq!(
+                blend(PerProduct, s, d, 0, &input()),
+                mame,
+                "per product {s} {d}"
+            );
             assert_eq!(blend(Dosbox, s, d, 0, &input()), dosbox, "DOSBox {s} {d}");
             assert_eq!(blend(Exact255, s, d, 0, &input()), exact, "86Box {s} {d}");
         }
     }
 
-    /// `MameSumOnce` adds the two products before the shift; `Mame` shifts each.
+    /// `Mame` adds the two products before the shift; `PerProduct` shifts each.
     #[test]
     fn mame_sum_once() {
         // ASRC_ALPHA / AOMSRC_ALPHA: (200*97 + 165*160) >> 8 = 178, (100*97 + 162*160) >> 8
         // = 139 (per product 37 + 101 = 138), (50*97 + 82*160) >> 8 = 70 (18 + 51 = 69).
-        assert_eq!(blend(MameSumOnce, 1, 5, 0, &input()), [178, 139, 70]);
-        assert_eq!(blend(Mame, 1, 5, 0, &input()), [178, 138, 69]);
+        assert_eq!(blend(Mame, 1, 5, 0, &input()), [178, 139, 70]);
+        assert_eq!(blend(PerProduct, 1, 5, 0, &input()), [178, 138, 69]);
         // tmu2_combine (603, 430): source 60 with alpha 104 over 565 (31, 1, 23), widened
         // (255, 4, 189): red (60*105 + 255*152) >> 8 = 176 (per product 24 + 151 = 175).
         let i = BlendInput {
@@ -445,18 +453,18 @@ mod tests {
             dst_rgb565: 31 << 11 | 1 << 5 | 23,
             ..input()
         };
-        assert_eq!(blend(MameSumOnce, 1, 5, 0, &i), [176, 26, 136]);
-        assert_eq!(blend(Mame, 1, 5, 0, &i), [175, 26, 136]);
+        assert_eq!(blend(Mame, 1, 5, 0, &i), [176, 26, 136]);
+        assert_eq!(blend(PerProduct, 1, 5, 0, &i), [175, 26, 136]);
         // Widening, factors and dither subtraction are MAME's: with dithering and dither
         // subtraction on (d = 3: +6 R/B, +3 G) the destination is (171, 165, 88):
         // (200*97 + 171*160) >> 8 = 182, (100*97 + 165*160) >> 8 = 141, (50*97 + 88*160)
         // >> 8 = 73 (per product 75 + 106, 37 + 103, 18 + 55).
         assert_eq!(
-            blend(MameSumOnce, 1, 5, DITHER | DITHER_SUB, &input()),
+            blend(Mame, 1, 5, DITHER | DITHER_SUB, &input()),
             [182, 141, 73]
         );
         assert_eq!(
-            blend(Mame, 1, 5, DITHER | DITHER_SUB, &input()),
+            blend(PerProduct, 1, 5, DITHER | DITHER_SUB, &input()),
             [181, 140, 73]
         );
     }
@@ -472,20 +480,23 @@ mod tests {
             (15, 0, [75, 37, 18], [75, 37, 18], [75, 37, 18]),
         ];
         for (s, d, mame, dosbox, exact) in cases {
-            assert_eq!(blend(Mame, s, d, ALPHA_PLANES, &i), mame);
+            assert_eq!(blend(PerProduct, s, d, ALPHA_PLANES, &i), mame);
             assert_eq!(blend(Dosbox, s, d, ALPHA_PLANES, &i), dosbox);
             assert_eq!(blend(Exact255, s, d, ALPHA_PLANES, &i), exact);
         }
         // Without alpha planes, or without an aux buffer, Ad = 0xff.
-        assert_eq!(blend(Mame, 3, 0, 0, &i), [200, 100, 50]);
+        assert_eq!(blend(PerProduct, 3, 0, 0, &i), [200, 100, 50]);
         let no_aux = BlendInput { dst_aux: None, ..i };
-        assert_eq!(blend(Mame, 3, 0, ALPHA_PLANES, &no_aux), [200, 100, 50]);
+        assert_eq!(
+            blend(PerProduct, 3, 0, ALPHA_PLANES, &no_aux),
+            [200, 100, 50]
+        );
         // A whole aux word above 255: MAME/DOSBox use it (factor 0x131), 86Box its low byte.
         let big = BlendInput {
             dst_aux: Some(0x130),
             ..i
         };
-        assert_eq!(blend(Mame, 3, 0, ALPHA_PLANES, &big), [238, 119, 59]);
+        assert_eq!(blend(PerProduct, 3, 0, ALPHA_PLANES, &big), [238, 119, 59]);
         assert_eq!(blend(Dosbox, 3, 0, ALPHA_PLANES, &big), [238, 119, 59]);
         assert_eq!(blend(Exact255, 3, 0, ALPHA_PLANES, &big), [37, 18, 9]);
     }
@@ -508,18 +519,18 @@ mod tests {
         let on = DITHER | DITHER_SUB;
         // AZERO/AONE shows the adjusted destination. MAME: (165, 162, 82) + (6, 3, 6);
         // DOSBox: (160, 160, 80) + (6, 3, 6); 86Box: + ((10-3)>>1, (12-3)>>2) = (3, 2, 3).
-        assert_eq!(blend(Mame, 0, 4, on, &i), [171, 165, 88]);
+        assert_eq!(blend(PerProduct, 0, 4, on, &i), [171, 165, 88]);
         assert_eq!(blend(Dosbox, 0, 4, on, &i), [166, 163, 86]);
         assert_eq!(blend(Exact255, 0, 4, on, &i), [168, 164, 85]);
-        assert_eq!(blend(Mame, 1, 5, on, &i), [181, 140, 73]);
+        assert_eq!(blend(PerProduct, 1, 5, on, &i), [181, 140, 73]);
         assert_eq!(blend(Dosbox, 1, 5, on, &i), [178, 138, 71]);
         assert_eq!(blend(Exact255, 1, 5, on, &i), [179, 139, 71]);
         // With dithering off only 86Box subtracts.
-        assert_eq!(blend(Mame, 0, 4, DITHER_SUB, &i), [165, 162, 82]);
+        assert_eq!(blend(PerProduct, 0, 4, DITHER_SUB, &i), [165, 162, 82]);
         assert_eq!(blend(Dosbox, 0, 4, DITHER_SUB, &i), [160, 160, 80]);
         assert_eq!(blend(Exact255, 0, 4, DITHER_SUB, &i), [168, 164, 85]);
         // Bit 19 clear: no adjustment.
-        assert_eq!(blend(Mame, 0, 4, DITHER, &i), [165, 162, 82]);
+        assert_eq!(blend(PerProduct, 0, 4, DITHER, &i), [165, 162, 82]);
         // 86Box's edges: black stays black, white saturates, negative offsets apply.
         let white = BlendInput {
             dst_rgb565: 0xffff,
@@ -539,7 +550,7 @@ mod tests {
             dither_value: 0,
             ..white
         };
-        assert_eq!(blend(Mame, 0, 6, on, &white0), [57, 157, 210]);
+        assert_eq!(blend(PerProduct, 0, 6, on, &white0), [57, 157, 210]);
     }
 
     #[test]
@@ -547,12 +558,12 @@ mod tests {
         let i = input();
         let d2 = DITHER | 1 << 11;
         // Default: 2x2-dithered pixels blend as DOSBox Staging, whatever `arithmetic` says.
-        assert_eq!(blend(Mame, 1, 5, d2, &i), [175, 137, 68]);
+        assert_eq!(blend(PerProduct, 1, 5, d2, &i), [175, 137, 68]);
         assert_eq!(blend(Exact255, 1, 5, d2, &i), [175, 137, 68]);
         // Bit 11 without dithering (bit 8) is not 2x2 dithering.
-        assert_eq!(blend(Mame, 1, 5, 1 << 11, &i), [178, 138, 69]);
+        assert_eq!(blend(PerProduct, 1, 5, 1 << 11, &i), [178, 138, 69]);
         let same = BlendProfile {
-            arithmetic: Mame,
+            arithmetic: PerProduct,
             dither_2x2: Dither2x2Blend::SameAsArithmetic,
             ..Default::default()
         };
