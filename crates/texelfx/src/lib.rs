@@ -486,7 +486,8 @@ impl Tmu {
         let w0 = self.start[2]
             .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[2]))
             .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[2]));
-        self.span.fill(dx, dy, len, w0, self.ddx[2]);
+        self.span
+            .fill(self.profile.lod, (dx, dy), len, w0, self.ddx[2]);
     }
 
     /// Subpixel correction of the S/T/W start registers (`fbzColorPath` bit 26):
@@ -516,8 +517,8 @@ impl Tmu {
                 .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[i]))
                 .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
         };
-        let recip = self.span.get(dx, dy);
-        let smp = self.sample(at(0), at(1), at(2), x, y, recip);
+        let span = self.span.get(dx, dy);
+        let smp = self.sample(at(0), at(1), at(2), x, y, span);
         let [r, g, b, a] = if self.passthrough {
             smp.texel
         } else {

@@ -189,12 +189,27 @@ pub(crate) fn lod_base(calc: LodCalc, g: [i64; 4], t_lod: u32) -> i32 {
 pub(crate) struct PixelLod {
     /// Base LOD from [`lod_base`].
     pub base: i32,
-    /// Iterated W (.32), when perspective correction is on.
-    pub persp_w: Option<i64>,
+    /// With perspective correction on, the pixel's LOD change from its W ([`w_term`]).
+    pub persp_term: Option<i32>,
     /// Screen position, for the dither.
     pub x: i32,
     /// Screen position, for the dither.
     pub y: i32,
+}
+
+/// The per-pixel LOD change (8.8) of perspective texturing: `log2(1 / W)` of the pixel's
+/// iterated W (.32), at the precision of `calc`.
+pub(crate) fn w_term(calc: LodCalc, w: i64) -> i32 {
+    match calc {
+        LodCalc::Mame => log2_mame(w as f64, 32).wrapping_neg(),
+        // Source: DOSBox Staging `TEXTURE_PIPELINE`: log2(1/W) from `fast_reciplog`.
+        LodCalc::Dosbox => reciplog_dosbox(w).1,
+        LodCalc::Box86 => {
+            // 1/W as 16.16 from a 64-bit divide; a negative W is a huge unsigned value.
+            let recip = crate::sample::box86_oow(w) as u64;
+            log2_86box(recip).wrapping_sub(19 << 8)
+        }
+    }
 }
 
 /// Final 8.8 LOD of one pixel, clamped to `[lodmin, min(lodmax, 8.0)]`.
@@ -207,27 +222,12 @@ pub(crate) fn pixel_lod(
 ) -> i32 {
     let tl = TLod(t_lod);
     let mut lod = p.base;
-    match calc {
-        LodCalc::Mame => {
-            if let Some(w) = p.persp_w {
-                lod = lod.wrapping_sub(log2_mame(w as f64, 32));
-            }
-            lod = lod.wrapping_add(tl.lodbias() << 6);
-        }
-        LodCalc::Dosbox => {
-            if let Some(w) = p.persp_w {
-                // Source: DOSBox Staging `TEXTURE_PIPELINE`: log2(1/W) from `fast_reciplog`.
-                lod = lod.wrapping_add(reciplog_dosbox(w).1);
-            }
-            lod = lod.wrapping_add(tl.lodbias() << 6);
-        }
-        LodCalc::Box86 => {
-            if let Some(w) = p.persp_w {
-                // 1/W as 16.16 from a 64-bit divide; a negative W is a huge unsigned value.
-                let recip = crate::sample::box86_oow(w) as u64;
-                lod = lod.wrapping_add(log2_86box(recip).wrapping_sub(19 << 8));
-            }
-        }
+    if let Some(term) = p.persp_term {
+        lod = lod.wrapping_add(term);
+    }
+    // 86Box adds the bias at setup (see `lod_base`).
+    if calc != LodCalc::Box86 {
+        lod = lod.wrapping_add(tl.lodbias() << 6);
     }
     if lod_dither_on && dither == LodDither::Matrix4x4 {
         // Source: MAME `fetch_texel` and DOSBox `TEXTURE_PIPELINE`: matrix value << 4 (0..15/16).
@@ -314,7 +314,7 @@ mod tests {
         let tl = (8 << 6 | 1) | (0x3e << 12); // lodmin 0.25, lodmax 2.0, bias -0.5
         let p = PixelLod {
             base: 0x180,
-            persp_w: None,
+            persp_term: None,
             x: 1,
             y: 2,
         };
@@ -354,18 +354,29 @@ mod tests {
     fn perspective_subtracts_log_w() {
         let tl = 0x20 << 6; // lodmax 8.0
                             // W = 0.25 (2.30 << 2 = .32): log2 = -2 -> LOD + 2
-        let p = PixelLod {
+        let at = |calc| PixelLod {
             base: 0x100,
-            persp_w: Some(1 << 30),
+            persp_term: Some(w_term(calc, 1 << 30)),
             x: 0,
             y: 0,
         };
+        assert_eq!(w_term(LodCalc::Mame, 1 << 30), 0x200);
         assert_eq!(
-            pixel_lod(LodCalc::Mame, LodDither::Off, &p, tl, false),
+            pixel_lod(LodCalc::Mame, LodDither::Off, &at(LodCalc::Mame), tl, false),
             0x300
         );
         // 86Box: 2^48 / 2^30 = 2^18 -> 18 - 19 = -1.0
-        assert_eq!(pixel_lod(LodCalc::Box86, LodDither::Off, &p, tl, false), 0);
+        assert_eq!(w_term(LodCalc::Box86, 1 << 30), -0x100);
+        assert_eq!(
+            pixel_lod(
+                LodCalc::Box86,
+                LodDither::Off,
+                &at(LodCalc::Box86),
+                tl,
+                false
+            ),
+            0
+        );
     }
 
     #[test]
@@ -402,7 +413,7 @@ mod tests {
         // per pixel: log2(1 / 0.25) = +2; bias is added after
         let p = PixelLod {
             base: 0x100,
-            persp_w: Some(1 << 30),
+            persp_term: Some(w_term(LodCalc::Dosbox, 1 << 30)),
             x: 0,
             y: 0,
         };

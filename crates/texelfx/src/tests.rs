@@ -719,7 +719,8 @@ fn span_perspective_factors_match_per_pixel_divide() {
     }
     // W (.32) at (-2, 3): 2^28 - (-2) * 2^24 + 3 * 2^23.
     let w = f64::from((1 << 28) + (2 << 24) + (3 << 23));
-    assert_eq!(spans.span.get(-2, 3), Some(256.0 / w));
+    let term = crate::lod::w_term(LodCalc::default(), w as i64);
+    assert_eq!(spans.span.get(-2, 3), Some((256.0 / w, term)));
     assert_eq!(spans.span.get(34, 3), None);
     assert_eq!(spans.span.get(0, 2), None);
 }
