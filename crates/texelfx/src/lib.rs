@@ -483,9 +483,7 @@ impl Tmu {
             self.span.clear();
             return;
         }
-        let w0 = self.start[2]
-            .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[2]))
-            .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[2]));
+        let w0 = self.iterated(2, dx, dy);
         self.span
             .fill(self.profile.lod, (dx, dy), len, w0, self.ddx[2]);
     }
@@ -512,11 +510,7 @@ impl Tmu {
         if self.lut_stale {
             self.rebuild_lut();
         }
-        let at = |i: usize| {
-            self.start[i]
-                .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[i]))
-                .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
-        };
+        let at = |i| self.iterated(i, dx, dy);
         let span = self.span.get(dx, dy);
         let smp = self.sample(at(0), at(1), at(2), x, y, span);
         let [r, g, b, a] = if self.passthrough {
@@ -531,6 +525,15 @@ impl Tmu {
                 .combine(smp.texel, [other.r, other.g, other.b, other.a], &factors)
         };
         Rgba { r, g, b, a }
+    }
+
+    /// Iterator `i` (0 S, 1 T, 2 W; .32) at pixel offset `(dx, dy)` from vertex A:
+    /// `start + dx * d/dx + dy * d/dy`, wrapping as the 64-bit references do.
+    #[inline(always)]
+    fn iterated(&self, i: usize, dx: i32, dy: i32) -> Fx32 {
+        self.start[i]
+            .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[i]))
+            .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
     }
 
     /// Recomputes what depends on the texture registers.

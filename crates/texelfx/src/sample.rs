@@ -3,9 +3,9 @@
 //!
 //! Coordinates become 24.8 texels of LOD 0: `S/W * 256` when `tpersp_st` is set (divided
 //! as [`crate::PerspDivide`] says), else `S >> 24` (rounded as [`crate::CoordRounding`]
-//! says), then are shifted down by the integer LOD. Point sampling drops the fraction; bilinear first subtracts half a texel
-//! and weighs the four neighbours by the top 4 bits of each fraction (the SST-1 keeps 4
-//! bits; Voodoo 2 keeps 8).
+//! says), then are shifted down by the integer LOD. Point sampling drops the fraction;
+//! bilinear first subtracts half a texel and weighs the four neighbours by the top 4 bits
+//! of each fraction (the SST-1 keeps 4 bits; Voodoo 2 keeps 8).
 //!
 //! Filter choice: `tmagfilter` when the clamped LOD equals `lodmin` (the texture is
 //! magnified), `tminfilter` otherwise. The spec's prose says the reverse, but its figure and
