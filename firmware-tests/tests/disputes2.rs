@@ -1,6 +1,7 @@
 //! The newer disputed behaviours, one register program per switch, run once per choice
 //! (continuing `disputes.rs`): the dither/stipple row with a flipped Y origin
 //! (`PatternRow`), float registers that overflow the fixed formats (`FloatOverflow`),
+//! the width of the subpixel correction of Z (`SubpixelZ`),
 //! the alpha-test input (`AlphaTestInput`), the LFB word swap of 32-bit formats
 //! (`LfbWordSwap`), and the texel switches that a short program shows
 //! (`TexelProfile::coord_rounding`, `decal_invert`, `trilinear`).
@@ -11,12 +12,12 @@
 //! The texel switches are run with both choices. The other choice's value is also given in
 //! the doc comment (and `crates/board/tests/trilinear.rs` runs `Trilinear::Ignored`).
 
-use firmware_tests::bits::{alpha, fbz, lfb};
+use firmware_tests::bits::{alpha, color_path, fbz, lfb};
 use firmware_tests::expect::{dither565, MATRIX_4X4};
 use firmware_tests::{
     fastfill, lfb16, lfb32, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
 };
-use pixelfx::profile::{AlphaTestInput, FloatOverflow, LfbWordSwap, PatternRow};
+use pixelfx::profile::{AlphaTestInput, FloatOverflow, LfbWordSwap, PatternRow, SubpixelZ};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
 use sst1_regs::addr;
@@ -163,6 +164,47 @@ fn float_overflow_indefinite() {
     let (pixel, depth) = float_overflow_program(FloatOverflow::Indefinite);
     assert_eq!(pixel, 0);
     assert_eq!(depth, [0, 0, 0]);
+}
+
+// --- subpixel correction of Z with a huge gradient: SubpixelZ ---------------------------
+
+/// A flat triangle with vertex A on a pixel corner (the correction offsets are 8/16 in x
+/// and y), subpixel correction on, `startZ` = 0xfffff000 (20.12: -1) and
+/// `dZdX` = 0x20000000, so that `8 * dZdX` = 2^32 leaves 32 bits. Returns the depth at
+/// x = 0, 1 of row 0. The depth is Z[31:12] with 0xfffff read as 0, 0x10000 as 0xffff and
+/// anything else as its low 16 bits (spec 5.19's clamp as MAME, DOSBox and 86Box do it),
+/// so a difference of 2^28 in Z shows only across that wrap.
+fn subpixel_z_program(subpixel_z: SubpixelZ) -> [u16; 2] {
+    let mut p = board(PixelProfile {
+        subpixel_z,
+        ..Default::default()
+    });
+    p.write(addr::FBZ_COLOR_PATH, color_path::PARAM_ADJUST);
+    p.write(addr::FBZ_MODE, BASE);
+    let t = flat(0xff00_0000);
+    for (reg, v) in [(addr::VERTEX_BX, 40 << 4), (addr::VERTEX_CY, 40 << 4)] {
+        p.write(reg, v);
+    }
+    p.write(addr::START_Z, 0xffff_f000);
+    p.write(addr::D_Z_DX, 0x2000_0000);
+    p.write(addr::TRIANGLE_CMD, t.area_sign());
+    std::array::from_fn(|x| p.read_aux(x as u32, 0))
+}
+
+/// `SubpixelZ::Wrap32` (MAME, 86Box; default): `(8 * 0 + 8 * 0x20000000) >> 4` wraps to
+/// 0 in 32 bits, so Z(0) stays 0xfffff000 (Z[31:12] = 0xfffff, reads 0) and
+/// Z(1) = 0x1ffff000 (0x1ffff, reads 0xffff). A board reading 0 at x = 0 supports it.
+#[test]
+fn subpixel_z_wraps_in_32_bits() {
+    assert_eq!(subpixel_z_program(SubpixelZ::Wrap32), [0, 0xffff]);
+}
+
+/// `SubpixelZ::Wide64` (DOSBox Staging): the 64-bit product 2^32 >> 4 = 0x10000000 is
+/// added, so Z(0) = 0x0ffff000 (0x0ffff, reads 0xffff) and Z(1) = 0x2ffff000 (0x2ffff,
+/// reads 0xffff).
+#[test]
+fn subpixel_z_in_64_bits() {
+    assert_eq!(subpixel_z_program(SubpixelZ::Wide64), [0xffff, 0xffff]);
 }
 
 // --- alpha test input: AlphaTestInput ---------------------------------------------------

@@ -73,7 +73,8 @@ impl Board {
         let init3 = sst1_regs::FbiInit3(self.fbi.reg(addr::FBI_INIT3));
         let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
         if cp.param_adjust() {
-            let (dx, dy) = self.fbi.params.subpixel_adjust();
+            let z_width = self.fbi.profile().subpixel_z;
+            let (dx, dy) = self.fbi.params.subpixel_adjust(z_width);
             if texturing {
                 for t in &mut self.tmus {
                     t.subpixel_adjust(dx, dy);

@@ -66,6 +66,25 @@ pub enum FloatOverflow {
     Indefinite,
 }
 
+/// How wide the Z part of the subpixel correction is computed (spec 5.16 does not say).
+///
+/// It matters only when `dZ/dx` or `dZ/dy` is so large that `offset * gradient` leaves
+/// 32 bits: Glide 3's console text writes `fdZdX` ~ 6e12 (glide `test30`), and the
+/// whole depth of those glyphs follows from how the correction wraps.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum SubpixelZ {
+    /// `(dy * dZdY + dx * dZdX) >> 4` in 32-bit arithmetic that wraps, like the colour
+    /// terms (MAME; 86Box's `int` products). With it our `test30` depth buffer equals
+    /// MAME's on all 307,200 pixels.
+    #[default]
+    Wrap32,
+    /// Each product in 64 bits, shifted on its own, then summed (DOSBox Staging's
+    /// `mul_32x32_shift`): 482 more majority failures on `test30/depth`.
+    Wide64,
+}
+
 /// Convert an IEEE single to fixed point with `frac_bits` fraction bits, truncating toward
 /// zero, as the chip's float registers do (spec 5.2: float registers are converted to the
 /// fixed formats on write). `overflow` says what out-of-range values give.
@@ -193,7 +212,7 @@ impl TriangleParams {
     /// is corrected twice, as on hardware.
     ///
     /// Returns the 12.4 offsets `(dx, dy)` so that the TMUs can apply the same correction.
-    pub fn subpixel_adjust(&mut self) -> (i32, i32) {
+    pub fn subpixel_adjust(&mut self, z_width: SubpixelZ) -> (i32, i32) {
         // Source: MAME and DOSBox Staging: offset = 8 - (coordinate & 15), in 1/16 pixel.
         let dx = 8 - (self.ax as i32 & 15);
         let dy = 8 - (self.ay as i32 & 15);
@@ -204,9 +223,18 @@ impl TriangleParams {
                     >> 4,
             );
         }
-        // Z uses a 64-bit product so that large gradients do not wrap before the shift.
-        let dz = ((dy as i64 * self.dzdy as i64) >> 4) + ((dx as i64 * self.dzdx as i64) >> 4);
-        self.start_z = self.start_z.wrapping_add(dz as i32);
+        let dz = match z_width {
+            SubpixelZ::Wrap32 => {
+                dy.wrapping_mul(self.dzdy)
+                    .wrapping_add(dx.wrapping_mul(self.dzdx))
+                    >> 4
+            }
+            SubpixelZ::Wide64 => {
+                (((dy as i64 * self.dzdy as i64) >> 4) + ((dx as i64 * self.dzdx as i64) >> 4))
+                    as i32
+            }
+        };
+        self.start_z = self.start_z.wrapping_add(dz);
         self.start_w = self.start_w.wrapping_add(
             (dy as i64)
                 .wrapping_mul(self.dwdy)
@@ -286,10 +314,10 @@ mod tests {
         };
         p.dx[0] = 0x1000;
         p.dy[0] = 0x2000;
-        assert_eq!(p.subpixel_adjust(), (4, 8));
+        assert_eq!(p.subpixel_adjust(SubpixelZ::Wrap32), (4, 8));
         // start += (8 * 0x2000 + 4 * 0x1000) >> 4
         assert_eq!(p.start[0], 0x1400);
-        p.subpixel_adjust();
+        p.subpixel_adjust(SubpixelZ::Wrap32);
         assert_eq!(p.start[0], 0x2800);
     }
 }

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 pub use crate::iter::WFloatEdges;
-pub use crate::params::FloatOverflow;
+pub use crate::params::{FloatOverflow, SubpixelZ};
 pub use crate::setup::EdgeRounding;
 pub use sst1_dither::DitherMatrix2x2;
 
@@ -76,6 +76,7 @@ pub struct PixelProfile {
     pub pattern_row: PatternRow,
     pub lfb_word_swap: LfbWordSwap,
     pub float_overflow: FloatOverflow,
+    pub subpixel_z: SubpixelZ,
     pub alpha_test_input: AlphaTestInput,
     pub dither_2x2: DitherMatrix2x2,
     pub fog: crate::fog::FogProfile,
