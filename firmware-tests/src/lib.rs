@@ -550,8 +550,8 @@ pub mod expect {
         /// 565 widened by replicating high bits; factor x as x+1, 1-x as 256-x; the sum
         /// of the two products shifted right by 8.
         Mame,
-        /// As MAME but each product shifted right by 8 (the emulator's default
-        /// `BlendArithmetic::PerProduct`).
+        /// As MAME but each product shifted right by 8 (the emulator's
+        /// `BlendArithmetic::PerProduct`, a hybrid).
         PerProduct,
         /// As `PerProduct` but widened with zero low bits.
         Dosbox,

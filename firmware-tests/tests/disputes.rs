@@ -439,7 +439,16 @@ fn blend_expected(a: Blend) -> u16 {
     rgb565_truncated(r, g, b)
 }
 
-/// `BlendArithmetic::PerProduct` (default): replicated destination, `x+1` / `256-x`,
+/// `BlendArithmetic::Majority` (default): each channel is the value two of the three
+/// arithmetics write. Red: MAME and 86Box 18 (DOSBox 17); green: DOSBox and 86Box 30
+/// (MAME 31); blue: all 14. The pixel, 0x93ce, is 86Box's.
+#[test]
+fn blend_arithmetic_majority() {
+    assert_eq!(blend_program(BlendArithmetic::Majority), 0x93ce);
+    assert_eq!(blended_pixel(BlendProfile::default(), 0, 0x30), 0x93ce);
+}
+
+/// `BlendArithmetic::PerProduct`: replicated destination, `x+1` / `256-x`,
 /// each product `>> 8`.
 #[test]
 fn blend_arithmetic_per_product() {

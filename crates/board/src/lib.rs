@@ -73,6 +73,7 @@ pub enum BufferKind {
 
 /// The accuracy profile of the whole board: every disputed behaviour in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct AccuracyProfile {
     /// Pixelfx switches.
     pub pixel: PixelProfile,

@@ -86,6 +86,7 @@ pub enum FogBothSources {
 /// The fog unit's disputed behaviours. `Default` follows two of the three references
 /// (or all three, against the spec, for [`FogBothSources`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(default)]
 pub struct FogProfile {
     pub difference: FogDifference,
     pub iterated_alpha: FogIteratedAlpha,

@@ -269,6 +269,17 @@ impl Fbi {
                 dither_value: self
                     .dither
                     .matrix_value(st.dither_matrix, x as u32, prow as u32),
+                dither_rows: blend::DitherRows {
+                    screen: self
+                        .dither
+                        .matrix_value(st.dither_matrix, x as u32, scry as u32),
+                    // `screen_y` is its own inverse on the low bits the matrix uses.
+                    raster: self.dither.matrix_value(
+                        st.dither_matrix,
+                        x as u32,
+                        self.screen_y(scry, mode.y_origin()) as u32,
+                    ),
+                },
             };
             blend::alpha_blend(am, mode, &input, profile.blend)
         } else {

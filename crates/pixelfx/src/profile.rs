@@ -68,6 +68,7 @@ pub enum AlphaTestInput {
 
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(default)]
 pub struct PixelProfile {
     pub edge_rounding: EdgeRounding,
     pub wfloat: WFloatEdges,

@@ -224,6 +224,7 @@ pub enum DecalInvert {
 /// Switches for behaviour on which the references disagree. `Default` is the majority of
 /// MAME, DOSBox Staging and 86Box, except `trilinear`, which follows the spec.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct TexelProfile {
     /// LOD computation.
     pub lod: LodCalc,
