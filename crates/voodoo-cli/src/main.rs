@@ -9,7 +9,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressStyle};
-use sst1_board::{Board, BufferKind};
+use sst1_board::{AccuracyProfile, Board, BufferKind};
 use sst1_regs::map;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
@@ -50,6 +50,10 @@ enum Command {
         /// Write the counters as JSON to this file.
         #[arg(long, value_name = "FILE")]
         stats_json: Option<PathBuf>,
+        /// Accuracy profile as JSON: every disputed behaviour, or only those to change,
+        /// e.g. `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see docs/accuracy.md).
+        #[arg(long, value_name = "FILE")]
+        profile: Option<PathBuf>,
     },
     /// Replay the bundled demo trace and write the picture as a PNG.
     Demo {
@@ -99,7 +103,17 @@ fn main() -> ExitCode {
             png,
             stats,
             stats_json,
-        } => replay(&trace, &out, png.as_deref(), stats, stats_json.as_deref()),
+            profile,
+        } => load_profile(profile.as_deref()).and_then(|profile| {
+            replay(
+                &trace,
+                &out,
+                png.as_deref(),
+                stats,
+                stats_json.as_deref(),
+                profile,
+            )
+        }),
         Command::Demo { png } => demo(&png),
         Command::Info { trace } => info(&trace),
         Command::Reg { register, value } => reg(&register, &value),
@@ -115,8 +129,18 @@ fn main() -> ExitCode {
 }
 
 /// Runs a trace on a fresh board, with a progress bar when stderr is a terminal.
-fn run(trace: &Trace) -> (Board, Vec<Dump>) {
+/// Reads an accuracy profile from a JSON file; members left out keep their defaults.
+fn load_profile(path: Option<&Path>) -> Result<AccuracyProfile, String> {
+    let Some(path) = path else {
+        return Ok(AccuracyProfile::default());
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn run(trace: &Trace, profile: AccuracyProfile) -> (Board, Vec<Dump>) {
     let mut board = Board::new(trace.board_config());
+    board.set_profile(profile);
     let bar = if std::io::stderr().is_terminal() {
         let bar = ProgressBar::new(trace.ops.len() as u64);
         if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} ops {elapsed}") {
@@ -170,9 +194,10 @@ fn replay(
     png: Option<&Path>,
     stats: bool,
     stats_json: Option<&Path>,
+    profile: AccuracyProfile,
 ) -> Result<(), String> {
     let trace = load_trace(path).map_err(|e| e.to_string())?;
-    let (board, dumps) = run(&trace);
+    let (board, dumps) = run(&trace, profile);
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     for written in write_dumps(&dumps, out).map_err(|e| e.to_string())? {
         println!("wrote {}", written.display());
@@ -207,7 +232,7 @@ fn replay(
 
 fn demo(png: &Path) -> Result<(), String> {
     let trace = read_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
-    let (board, _) = run(&trace);
+    let (board, _) = run(&trace, AccuracyProfile::default());
     let (w, h) = write_front_png(&board, png)?;
     println!(
         "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",

@@ -169,3 +169,44 @@ fn bad_trace_reports_file_and_line() {
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A 16x16 FASTFILL of colour (0x85, 0x85, 0x85) with the 2x2 dither: row 1 gets matrix
+/// entries 14, 6 (classic) or 11, 9 (MAME's matrix), so red at (0, 1) is 17 or 16.
+const DITHERED_FILL: &str = "pci 0x40 0x3\n\
+                             w 0x000118 0x00000010\n\
+                             w 0x00011c 0x00000010\n\
+                             w 0x000148 0x00858585\n\
+                             w 0x000110 0x00000b01\n\
+                             w 0x000124 0\n\
+                             dump front fill_front.raw\n";
+
+#[test]
+fn replay_takes_a_partial_profile() {
+    let dir = scratch("profile");
+    std::fs::write(dir.join("fill.trace"), DITHERED_FILL).unwrap();
+    std::fs::write(
+        dir.join("mame.json"),
+        r#"{"pixel": {"dither_2x2": "Mame"}}"#,
+    )
+    .unwrap();
+    let red_at_0_1 = |args: &[&str]| {
+        stdout(&voodoo(&dir, args));
+        let raw = std::fs::read(dir.join("fill_front.raw")).unwrap();
+        let i = 2 * 640;
+        u16::from_le_bytes([raw[i], raw[i + 1]]) >> 11
+    };
+    assert_eq!(red_at_0_1(&["replay", "fill.trace"]), 17);
+    assert_eq!(
+        red_at_0_1(&["replay", "fill.trace", "--profile", "mame.json"]),
+        16
+    );
+    std::fs::write(dir.join("bad.json"), r#"{"pixel": {"dither_2x2": "Nope"}}"#).unwrap();
+    let out = voodoo(&dir, &["replay", "fill.trace", "--profile", "bad.json"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.starts_with("voodoo: bad.json: unknown variant `Nope`"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
