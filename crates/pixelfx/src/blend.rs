@@ -300,23 +300,35 @@ pub fn alpha_blend(
         // 86Box the screen row, DOSBox Staging the raster row (see `PatternRow`).
         let rows = input.dither_rows;
         let blend = |arith, dv: u8| blend_rgb(arith, alpha_mode, fbz_mode, input, dv, profile);
-        let (m, da) = blend(BlendArithmetic::Mame, rows.screen);
-        let (d, _) = blend(BlendArithmetic::Dosbox, rows.raster);
-        let (b, _) = blend(BlendArithmetic::Exact255, rows.screen);
         let dither = fbz_mode.enable_dithering();
-        let entries = [rows.screen, rows.raster, rows.screen, input.dither_value];
-        let vote_channel = |c: usize, bits: u32| {
-            let q = entries.map(|e| move |v: i32| reduce(v, bits, dither, e as i32));
-            vote(
-                [m[c], d[c], b[c]],
-                [q[0](m[c]), q[1](d[c]), q[2](b[c])],
-                q[3],
-            )
+        // (`[T; 3]::map` is not inlined here: the channels are written out.)
+        let reduced = |v: [i32; 3], e: u8| {
+            let e = e as i32;
+            [
+                reduce(v[0], 5, dither, e),
+                reduce(v[1], 6, dither, e),
+                reduce(v[2], 5, dither, e),
+            ]
         };
-        (
-            [vote_channel(0, 5), vote_channel(1, 6), vote_channel(2, 5)],
-            da,
-        )
+        let (m, da) = blend(BlendArithmetic::Mame, rows.screen);
+        let (b, _) = blend(BlendArithmetic::Exact255, rows.screen);
+        let (qm, qb) = (reduced(m, rows.screen), reduced(b, rows.screen));
+        // Where MAME and 86Box already agree (and this pipeline dithers with their row),
+        // DOSBox Staging's vote cannot change the outcome: most blended pixels end here.
+        let rgb = if qm == qb && input.dither_value == rows.screen {
+            m
+        } else {
+            let (d, _) = blend(BlendArithmetic::Dosbox, rows.raster);
+            let qd = reduced(d, rows.raster);
+            let ours = input.dither_value as i32;
+            let channel = |c: usize, bits: u32| {
+                vote([m[c], d[c], b[c]], [qm[c], qd[c], qb[c]], |v| {
+                    reduce(v, bits, dither, ours)
+                })
+            };
+            [channel(0, 5), channel(1, 6), channel(2, 5)]
+        };
+        (rgb, da)
     } else {
         blend_rgb(
             arith,
@@ -340,11 +352,10 @@ pub fn alpha_blend(
     } else {
         0
     };
-    let [r, g, b] = rgb.map(|v| v as u8);
     Rgba {
-        r,
-        g,
-        b,
+        r: rgb[0] as u8,
+        g: rgb[1] as u8,
+        b: rgb[2] as u8,
         a: (a_src + a_dst).clamp(0, 255) as u8,
     }
 }
@@ -363,8 +374,9 @@ fn reduce(v: i32, bits: u32, dither: bool, dv: i32) -> i32 {
 
 /// One channel of the `Majority` blend. `values` are the 8-bit results of MAME, DOSBox
 /// Staging and 86Box, `reduced` the 5- or 6-bit values each would write. Returns the
-/// 8-bit value that this pipeline's dither stage (`ours`) reduces to the value two
-/// references write; MAME's when all three differ.
+/// 8-bit value (MAME's, else 86Box's, else DOSBox Staging's) that this pipeline's dither
+/// stage (`ours`) reduces to the value two references write; MAME's when all three
+/// differ.
 #[inline(always)]
 fn vote(values: [i32; 3], reduced: [i32; 3], ours: impl Fn(i32) -> i32) -> i32 {
     let [qm, qd, qb] = reduced;
@@ -375,10 +387,15 @@ fn vote(values: [i32; 3], reduced: [i32; 3], ours: impl Fn(i32) -> i32) -> i32 {
     } else {
         return values[0];
     };
-    values
-        .into_iter()
-        .find(|&v| ours(v) == target)
-        .unwrap_or(values[0])
+    if ours(values[0]) == target {
+        values[0]
+    } else if ours(values[2]) == target {
+        values[2]
+    } else if ours(values[1]) == target {
+        values[1]
+    } else {
+        values[0]
+    }
 }
 
 /// The RGB blend under one (single) arithmetic, and the destination alpha it used.
@@ -588,14 +605,14 @@ mod tests {
         let trunc5 = |v: i32| v >> 3;
         // MAME and 86Box agree (22): MAME's value.
         assert_eq!(vote([178, 175, 177], [22, 21, 22], trunc5), 178);
-        // DOSBox and 86Box agree (12) against MAME (13): the first value this pipeline
-        // reduces to 12, DOSBox's.
-        assert_eq!(vote([104, 96, 97], [13, 12, 12], trunc5), 96);
+        // DOSBox and 86Box agree (12) against MAME (13): a value this pipeline reduces
+        // to 12, 86Box's (tried before DOSBox's, whose dither row may differ).
+        assert_eq!(vote([104, 96, 97], [13, 12, 12], trunc5), 97);
         // All three differ: MAME's.
         assert_eq!(vote([104, 96, 88], [13, 12, 11], trunc5), 104);
-        // DOSBox's raster-row reduction agrees with 86Box's, but here the pipeline reduces
-        // DOSBox's 8-bit value to 11: 86Box's value is the one that writes the majority.
-        assert_eq!(vote([104, 95, 97], [13, 12, 12], trunc5), 97);
+        // DOSBox's raster-row reduction agrees with 86Box's, and only DOSBox's 8-bit
+        // value reduces to 12 in this pipeline: DOSBox's value.
+        assert_eq!(vote([104, 97, 95], [13, 12, 12], trunc5), 97);
     }
 
     /// Over every factor pair, dithering off and on, with and without dither

@@ -194,8 +194,12 @@ pub fn apply_fog(
             }
         })
     };
-    let [r, g, b] = out.map(|v| v.clamp(0, 255) as u8);
-    Rgba { r, g, b, a: c.a }
+    Rgba {
+        r: out[0].clamp(0, 255) as u8,
+        g: out[1].clamp(0, 255) as u8,
+        b: out[2].clamp(0, 255) as u8,
+        a: c.a,
+    }
 }
 
 #[cfg(test)]
