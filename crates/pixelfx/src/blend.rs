@@ -124,7 +124,8 @@ pub enum SaturateOperand {
 /// Measured with every other switch at its default (`arithmetic = Majority`,
 /// `dither_2x2 = Classic`): the only dump with blended 2x2-dithered pixels is
 /// `stress_random/front`. `Dosbox`: 5 consensus + 3380 majority failures there;
-/// `SameAsArithmetic` (the vote for these pixels too): 47 + 3558. (With the earlier
+/// `SameAsArithmetic` (the vote for these pixels too, MAME's part dithered with its own
+/// 2x2 matrix): 6 + 3353. (With the earlier
 /// default `PerProduct`: 12 + 3956 against 121 + 4339.) No other dump changes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Dither2x2Blend {
@@ -164,19 +165,33 @@ pub struct BlendInput {
     /// 2x2), whether or not bit 8 enables dithering: `Dither::matrix_value` with
     /// `Dither4x4` or `Dither2x2`. Used only for dither subtraction (bit 19).
     pub dither_value: u8,
-    /// The same matrix's entries at the frame-buffer row after the Y-origin flip
-    /// (`screen`: MAME, 86Box) and at the raster row before it (`raster`: DOSBox
-    /// Staging); `dither_value` is one of them, as [`PatternRow`](crate::profile::PatternRow)
-    /// says. Used only by [`BlendArithmetic::Majority`], which blends and reduces each
+    /// The dither-matrix entry each reference uses at the pixel (see [`DitherRows`]).
+    /// Used only by [`BlendArithmetic::Majority`], which blends and reduces each
     /// reference's way.
     pub dither_rows: DitherRows,
 }
 
-/// One dither-matrix entry per row convention (see [`BlendInput::dither_rows`]).
+/// The dither-matrix entry each reference uses at a pixel, for its dither subtraction and
+/// its reduction to RGB565. They differ in the row (`PatternRow`: MAME and 86Box index
+/// the matrices with the frame-buffer row after the Y-origin flip, DOSBox Staging with
+/// the raster row before it) and in the 2x2 matrix (`DitherMatrix2x2`: MAME's own,
+/// the classic one for the other two).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DitherRows {
-    pub screen: u8,
-    pub raster: u8,
+    pub mame: u8,
+    pub dosbox: u8,
+    pub box86: u8,
+}
+
+impl DitherRows {
+    /// The same entry for all three (no Y flip, no 2x2 dither).
+    pub const fn all(entry: u8) -> Self {
+        Self {
+            mame: entry,
+            dosbox: entry,
+            box86: entry,
+        }
+    }
 }
 
 /// Scale of the blend factors: `(one, plus)`: a factor `x` is `x + plus`, `1 - x` is
@@ -299,8 +314,7 @@ pub fn alpha_blend(
         profile.arithmetic
     };
     let (rgb, da) = if arith == BlendArithmetic::Majority {
-        // Each reference blends and dithers with its own row's matrix entry: MAME and
-        // 86Box the screen row, DOSBox Staging the raster row (see `PatternRow`).
+        // Each reference blends and dithers with its own matrix entry (`DitherRows`).
         let rows = input.dither_rows;
         let blend = |arith, dv: u8| blend_rgb(arith, alpha_mode, fbz_mode, input, dv, profile);
         let dither = fbz_mode.enable_dithering();
@@ -313,17 +327,17 @@ pub fn alpha_blend(
                 reduce(v[2], 5, dither, e),
             ]
         };
-        let (m, da) = blend(BlendArithmetic::Mame, rows.screen);
-        let (b, _) = blend(BlendArithmetic::Exact255, rows.screen);
-        let (qm, qb) = (reduced(m, rows.screen), reduced(b, rows.screen));
+        let (m, da) = blend(BlendArithmetic::Mame, rows.mame);
+        let (b, _) = blend(BlendArithmetic::Exact255, rows.box86);
+        let (qm, qb) = (reduced(m, rows.mame), reduced(b, rows.box86));
         let ours = input.dither_value;
-        let rgb = if qm == qb && ours == rows.screen {
-            // MAME and 86Box agree, and this pipeline dithers with their row: DOSBox
+        let rgb = if qm == qb && ours == rows.mame {
+            // MAME and 86Box agree, and this pipeline dithers with MAME's entry: DOSBox
             // Staging's arithmetic cannot change the outcome. Most blended pixels end here.
             m
         } else {
-            let (d, _) = blend(BlendArithmetic::Dosbox, rows.raster);
-            let qd = reduced(d, rows.raster);
+            let (d, _) = blend(BlendArithmetic::Dosbox, rows.dosbox);
+            let qd = reduced(d, rows.dosbox);
             let target = if qm == qd || qm == qb {
                 qm
             } else if qd == qb {
@@ -502,10 +516,7 @@ mod tests {
             dst_rgb565: DST,
             dst_aux: Some(0x30),
             dither_value: 3,
-            dither_rows: DitherRows {
-                screen: 3,
-                raster: 3,
-            },
+            dither_rows: DitherRows::all(3),
         }
     }
 
@@ -605,10 +616,7 @@ mod tests {
             for dv in 0..16u8 {
                 let i = BlendInput {
                     dither_value: dv,
-                    dither_rows: DitherRows {
-                        screen: dv,
-                        raster: dv,
-                    },
+                    dither_rows: DitherRows::all(dv),
                     ..input()
                 };
                 let dither = fbz & DITHER != 0;
@@ -635,6 +643,57 @@ mod tests {
         }
         // Each of the three outcomes is exercised.
         assert!(cases.iter().all(|&n| n > 0), "{cases:?}");
+    }
+
+    /// With a different dither entry per reference (another row for DOSBox Staging,
+    /// MAME's own 2x2 matrix), each reference's pixel is reduced with its own entry, and
+    /// the written pixel is one that this pipeline's entry reduces to the majority.
+    #[test]
+    fn majority_reduces_each_reference_with_its_own_entry() {
+        let fbz = DITHER | DITHER_SUB;
+        for dv in 0..16u8 {
+            let rows = DitherRows {
+                mame: dv,
+                dosbox: (dv + 5) % 16,
+                box86: (dv + 9) % 16,
+            };
+            let i = BlendInput {
+                dither_value: dv,
+                dither_rows: rows,
+                ..input()
+            };
+            let q = |v: [u8; 3], e: u8| {
+                [(v[0], 5), (v[1], 6), (v[2], 5)]
+                    .map(|(x, bits)| reduce(x as i32, bits, true, e as i32))
+            };
+            // Each single arithmetic with the reference's own entry.
+            let own = |a, e: u8| {
+                let one = BlendInput {
+                    dither_value: e,
+                    ..i
+                };
+                blend(a, 1, 5, fbz, &one)
+            };
+            let (m, d, b) = (
+                own(Mame, rows.mame),
+                own(Dosbox, rows.dosbox),
+                own(Exact255, rows.box86),
+            );
+            let (qm, qd, qb) = (q(m, rows.mame), q(d, rows.dosbox), q(b, rows.box86));
+            let want = if qm == qd || qm == qb {
+                qm
+            } else if qd == qb {
+                qd
+            } else {
+                qm
+            };
+            let v = blend(Majority, 1, 5, fbz, &i);
+            if [m, b, d].iter().any(|&x| q(x, dv) == want) {
+                assert_eq!(q(v, dv), want, "entry {dv}");
+            } else {
+                assert_eq!(v, m, "entry {dv}");
+            }
+        }
     }
 
     /// MAME and 86Box agree on red, DOSBox and 86Box on green: no two agree on the

@@ -269,16 +269,16 @@ impl Fbi {
                 dither_value: self
                     .dither
                     .matrix_value(st.dither_matrix, x as u32, prow as u32),
-                dither_rows: blend::DitherRows {
-                    screen: self
-                        .dither
-                        .matrix_value(st.dither_matrix, x as u32, scry as u32),
+                dither_rows: {
+                    use sst1_dither::{matrix_entry, DitherMatrix2x2::*};
+                    let k = st.dither_matrix;
                     // `screen_y` is its own inverse on the low bits the matrix uses.
-                    raster: self.dither.matrix_value(
-                        st.dither_matrix,
-                        x as u32,
-                        self.screen_y(scry, mode.y_origin()) as u32,
-                    ),
+                    let raster = self.screen_y(scry, mode.y_origin()) as u32;
+                    blend::DitherRows {
+                        mame: matrix_entry(k, Mame, x as u32, scry as u32),
+                        dosbox: matrix_entry(k, Classic, x as u32, raster),
+                        box86: matrix_entry(k, Classic, x as u32, scry as u32),
+                    }
                 },
             };
             blend::alpha_blend(am, mode, &input, profile.blend)

@@ -69,6 +69,17 @@ pub enum DitherKind {
     Dither2x2,
 }
 
+/// The entry (0..=15) of the matrix `kind` selects at `(x, y)`, with `matrix_2x2` as the
+/// 2x2 matrix; 0 when dithering is off. [`Dither::matrix_value`] without the tables, for
+/// callers that need another 2x2 matrix than the one a [`Dither`] was built with.
+pub const fn matrix_entry(kind: DitherKind, matrix_2x2: DitherMatrix2x2, x: u32, y: u32) -> u8 {
+    match kind {
+        DitherKind::Off => 0,
+        DitherKind::Dither4x4 => MATRIX_4X4[(y & 3) as usize][(x & 3) as usize],
+        DitherKind::Dither2x2 => matrix_2x2.matrix()[(y & 1) as usize][(x & 1) as usize],
+    }
+}
+
 /// Red/blue: 8 bits to 5 with matrix entry `d`. Source: see the module documentation.
 const fn dither_rb(v: u8, d: u8) -> u8 {
     let v = v as u32;
@@ -156,12 +167,7 @@ impl Dither {
     /// The alpha-blend dither subtraction (`fbzMode` bit 19) works from this value.
     #[inline]
     pub fn matrix_value(&self, kind: DitherKind, x: u32, y: u32) -> u8 {
-        let (x, y) = ((x & 3) as usize, (y & 3) as usize);
-        match kind {
-            DitherKind::Off => 0,
-            DitherKind::Dither4x4 => MATRIX_4X4[y][x],
-            DitherKind::Dither2x2 => self.matrix_2x2.matrix()[y & 1][x & 1],
-        }
+        matrix_entry(kind, self.matrix_2x2, x, y)
     }
 }
 
