@@ -327,17 +327,18 @@ pub fn alpha_blend(
                 reduce(v[2], 5, dither, e),
             ]
         };
-        let (m, da) = blend(BlendArithmetic::Mame, rows.mame);
+        let (d, da) = blend(BlendArithmetic::Dosbox, rows.dosbox);
         let (b, _) = blend(BlendArithmetic::Exact255, rows.box86);
-        let (qm, qb) = (reduced(m, rows.mame), reduced(b, rows.box86));
+        let (qd, qb) = (reduced(d, rows.dosbox), reduced(b, rows.box86));
         let ours = input.dither_value;
-        let rgb = if qm == qb && ours == rows.mame {
-            // MAME and 86Box agree, and this pipeline dithers with MAME's entry: DOSBox
-            // Staging's arithmetic cannot change the outcome. Most blended pixels end here.
-            m
+        let rgb = if qd == qb && ours == rows.box86 {
+            // DOSBox Staging and 86Box agree, and this pipeline dithers with 86Box's
+            // entry: MAME's arithmetic cannot change the outcome. Most blended pixels end
+            // here.
+            b
         } else {
-            let (d, _) = blend(BlendArithmetic::Dosbox, rows.dosbox);
-            let qd = reduced(d, rows.dosbox);
+            let (m, _) = blend(BlendArithmetic::Mame, rows.mame);
+            let qm = reduced(m, rows.mame);
             let target = if qm == qd || qm == qb {
                 qm
             } else if qd == qb {
