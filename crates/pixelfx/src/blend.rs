@@ -314,53 +314,7 @@ pub fn alpha_blend(
         profile.arithmetic
     };
     let (rgb, da) = if arith == BlendArithmetic::Majority {
-        // Each reference blends and dithers with its own matrix entry (`DitherRows`).
-        let rows = input.dither_rows;
-        let blend = |arith, dv: u8| blend_rgb(arith, alpha_mode, fbz_mode, input, dv, profile);
-        let dither = fbz_mode.enable_dithering();
-        // (`[T; 3]::map` is not inlined here: the channels are written out.)
-        let reduced = |v: [i32; 3], e: u8| {
-            let e = e as i32;
-            [
-                reduce(v[0], 5, dither, e),
-                reduce(v[1], 6, dither, e),
-                reduce(v[2], 5, dither, e),
-            ]
-        };
-        let (d, da) = blend(BlendArithmetic::Dosbox, rows.dosbox);
-        let (b, _) = blend(BlendArithmetic::Exact255, rows.box86);
-        let (qd, qb) = (reduced(d, rows.dosbox), reduced(b, rows.box86));
-        let ours = input.dither_value;
-        let rgb = if qd == qb && ours == rows.box86 {
-            // DOSBox Staging and 86Box agree, and this pipeline dithers with 86Box's
-            // entry: MAME's arithmetic cannot change the outcome. Most blended pixels end
-            // here.
-            b
-        } else {
-            let (m, _) = blend(BlendArithmetic::Mame, rows.mame);
-            let qm = reduced(m, rows.mame);
-            let target = if qm == qd || qm == qb {
-                qm
-            } else if qd == qb {
-                qd
-            } else {
-                // All three differ: MAME's (the reference the conformance README calls the
-                // most hardware-checked).
-                return finish(m, da, alpha_mode, input);
-            };
-            // The 8-bit pixel that this pipeline's dither stage writes as `target`:
-            // MAME's, else 86Box's, else DOSBox Staging's (whose dither row may differ).
-            if reduced(m, ours) == target {
-                m
-            } else if reduced(b, ours) == target {
-                b
-            } else if reduced(d, ours) == target {
-                d
-            } else {
-                m
-            }
-        };
-        (rgb, da)
+        majority_rgb(alpha_mode, fbz_mode, input, profile)
     } else {
         blend_rgb(
             arith,
@@ -372,6 +326,64 @@ pub fn alpha_blend(
         )
     };
     finish(rgb, da, alpha_mode, input)
+}
+
+/// [`BlendArithmetic::Majority`]: the RGB of the pixel two of the three references'
+/// arithmetics write (MAME's when all three differ), and the destination alpha.
+#[inline(always)]
+fn majority_rgb(
+    alpha_mode: AlphaMode,
+    fbz_mode: FbzMode,
+    input: &BlendInput,
+    profile: BlendProfile,
+) -> ([i32; 3], i32) {
+    // Each reference blends and dithers with its own matrix entry (`DitherRows`).
+    let rows = input.dither_rows;
+    let blend = |arith, dv: u8| blend_rgb(arith, alpha_mode, fbz_mode, input, dv, profile);
+    let dither = fbz_mode.enable_dithering();
+    // (`[T; 3]::map` is not inlined here: the channels are written out.)
+    let reduced = |v: [i32; 3], e: u8| {
+        let e = e as i32;
+        [
+            reduce(v[0], 5, dither, e),
+            reduce(v[1], 6, dither, e),
+            reduce(v[2], 5, dither, e),
+        ]
+    };
+    let (d, da) = blend(BlendArithmetic::Dosbox, rows.dosbox);
+    let (b, _) = blend(BlendArithmetic::Exact255, rows.box86);
+    let (qd, qb) = (reduced(d, rows.dosbox), reduced(b, rows.box86));
+    let ours = input.dither_value;
+    let rgb = if qd == qb && ours == rows.box86 {
+        // DOSBox Staging and 86Box agree, and this pipeline dithers with 86Box's
+        // entry: MAME's arithmetic cannot change the outcome (the common case, so MAME's
+        // is computed last).
+        b
+    } else {
+        let (m, _) = blend(BlendArithmetic::Mame, rows.mame);
+        let qm = reduced(m, rows.mame);
+        let target = if qm == qd || qm == qb {
+            qm
+        } else if qd == qb {
+            qd
+        } else {
+            // All three differ: MAME's (the reference the conformance README calls the
+            // most hardware-checked).
+            return (m, da);
+        };
+        // The 8-bit pixel that this pipeline's dither stage writes as `target`:
+        // MAME's, else 86Box's, else DOSBox Staging's (whose dither row may differ).
+        if reduced(m, ours) == target {
+            m
+        } else if reduced(b, ours) == target {
+            b
+        } else if reduced(d, ours) == target {
+            d
+        } else {
+            m
+        }
+    };
+    (rgb, da)
 }
 
 /// The blended pixel from its RGB and the destination alpha: the alpha channel has only
