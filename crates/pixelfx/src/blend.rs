@@ -166,8 +166,8 @@ pub struct BlendInput {
     /// `Dither4x4` or `Dither2x2`. Used only for dither subtraction (bit 19).
     pub dither_value: u8,
     /// The dither-matrix entry each reference uses at the pixel (see [`DitherRows`]).
-    /// Used only by [`BlendArithmetic::Majority`], which blends and reduces each
-    /// reference's way.
+    /// Read only by [`BlendArithmetic::Majority`], which blends and reduces each
+    /// reference's way; the pipeline leaves it zero for the other arithmetics.
     pub dither_rows: DitherRows,
 }
 
@@ -343,7 +343,6 @@ fn majority_rgb(
     let dither = fbz_mode.enable_dithering();
     // (`[T; 3]::map` is not inlined here: the channels are written out.)
     let reduced = |v: [i32; 3], e: u8| {
-        let e = e as i32;
         [
             reduce(v[0], 5, dither, e),
             reduce(v[1], 6, dither, e),
@@ -409,16 +408,17 @@ fn finish(rgb: [i32; 3], da: i32, alpha_mode: AlphaMode, input: &BlendInput) -> 
     }
 }
 
-/// An 8-bit channel reduced to `bits` (5 or 6) as the dither unit reduces it: the
-/// ordered-dither equation with matrix entry `dv`, or truncation with dithering off (see
-/// the `sst1-dither` crate).
+/// An 8-bit channel (0..=255) reduced to `bits` (5 or 6) as the dither unit reduces it:
+/// [`sst1_dither::dither_rb`] / [`sst1_dither::dither_g`] with matrix entry `dv`, or
+/// truncation with dithering off.
 #[inline(always)]
-fn reduce(v: i32, bits: u32, dither: bool, dv: i32) -> i32 {
-    match (dither, bits) {
+fn reduce(v: i32, bits: u32, dither: bool, dv: u8) -> i32 {
+    let v = v as u8;
+    i32::from(match (dither, bits) {
         (false, _) => v >> (8 - bits),
-        (true, 5) => (2 * v - (v >> 4) + (v >> 7) + dv) >> 4,
-        (true, _) => (4 * v - (v >> 4) + (v >> 6) + dv) >> 4,
-    }
+        (true, 5) => sst1_dither::dither_rb(v, dv),
+        (true, _) => sst1_dither::dither_g(v, dv),
+    })
 }
 
 /// The RGB blend under one (single) arithmetic, and the destination alpha it used.
@@ -635,7 +635,7 @@ mod tests {
                 let dither = fbz & DITHER != 0;
                 let q = |v: [u8; 3]| {
                     [(v[0], 5), (v[1], 6), (v[2], 5)]
-                        .map(|(x, bits)| reduce(x as i32, bits, dither, dv as i32))
+                        .map(|(x, bits)| reduce(x as i32, bits, dither, dv))
                 };
                 for src in 0..16 {
                     for dst in 0..16 {
@@ -676,8 +676,7 @@ mod tests {
                 ..input()
             };
             let q = |v: [u8; 3], e: u8| {
-                [(v[0], 5), (v[1], 6), (v[2], 5)]
-                    .map(|(x, bits)| reduce(x as i32, bits, true, e as i32))
+                [(v[0], 5), (v[1], 6), (v[2], 5)].map(|(x, bits)| reduce(x as i32, bits, true, e))
             };
             // Each single arithmetic with the reference's own entry.
             let own = |a, e: u8| {

@@ -269,7 +269,8 @@ impl Fbi {
                 dither_value: self
                     .dither
                     .matrix_value(st.dither_matrix, x as u32, prow as u32),
-                dither_rows: {
+                // Only the blend vote reads the references' own entries.
+                dither_rows: if profile.blend.arithmetic == blend::BlendArithmetic::Majority {
                     use sst1_dither::{matrix_entry, DitherMatrix2x2::*};
                     let k = st.dither_matrix;
                     // `screen_y` is its own inverse on the low bits the matrix uses.
@@ -279,6 +280,8 @@ impl Fbi {
                         dosbox: matrix_entry(k, Classic, x as u32, raster),
                         box86: matrix_entry(k, Classic, x as u32, scry as u32),
                     }
+                } else {
+                    blend::DitherRows::default()
                 },
             };
             blend::alpha_blend(am, mode, &input, profile.blend)

@@ -81,13 +81,13 @@ pub const fn matrix_entry(kind: DitherKind, matrix_2x2: DitherMatrix2x2, x: u32,
 }
 
 /// Red/blue: 8 bits to 5 with matrix entry `d`. Source: see the module documentation.
-const fn dither_rb(v: u8, d: u8) -> u8 {
+pub const fn dither_rb(v: u8, d: u8) -> u8 {
     let v = v as u32;
     ((2 * v - (v >> 4) + (v >> 7) + d as u32) >> 4) as u8
 }
 
 /// Green: 8 bits to 6 with matrix entry `d`. Source: see the module documentation.
-const fn dither_g(v: u8, d: u8) -> u8 {
+pub const fn dither_g(v: u8, d: u8) -> u8 {
     let v = v as u32;
     ((4 * v - (v >> 4) + (v >> 6) + d as u32) >> 4) as u8
 }
