@@ -14,11 +14,13 @@ mod bus;
 mod chain;
 mod diagnostics;
 pub mod presets;
+pub mod reference;
 
 use serde::{Deserialize, Serialize};
 
 pub use diagnostics::{Diagnostic, Diagnostics};
 pub use pixelfx::{PixelProfile, Stats};
+pub use reference::{vote, Reference};
 pub use texelfx::{TexelProfile, Tmu};
 
 use pixelfx::Fbi;
@@ -150,6 +152,11 @@ impl Board {
     /// The FBI, for inspection.
     pub fn fbi(&self) -> &Fbi {
         &self.fbi
+    }
+
+    /// TMU `index` (0 is the one next to the FBI), for inspection; `None` past the last.
+    pub fn tmu(&self, index: usize) -> Option<&Tmu> {
+        self.tmus.get(index)
     }
 
     /// The buffer as `width * height` raw 16-bit values, row 0 = first row in memory.

@@ -26,7 +26,8 @@ use sst1_board::{BoardConfig, BufferKind};
 pub use binary::{decode_binary, encode_binary, BinaryError};
 pub use recorder::Recorder;
 pub use replay::{
-    execute, replay, rgb565_to_rgb8, write_dumps, Dump, OpCounts, ReplayError, PROGRESS_STEP,
+    execute, execute_references, replay, rgb565_to_rgb8, write_dumps, Dump, OpCounts,
+    ReferenceReplay, ReplayError, PROGRESS_STEP,
 };
 pub use text::{parse_text, write_text, ParseError};
 

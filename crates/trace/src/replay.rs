@@ -9,7 +9,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use sst1_board::Board;
+use sst1_board::{vote, Board, BoardConfig, BufferKind, Reference};
 use sst1_regs::{addr, RegisterBus};
 
 use crate::{DumpBuffer, Trace, TraceOp};
@@ -175,6 +175,76 @@ pub fn execute(ops: &[TraceOp], board: &mut Board, mut progress: impl FnMut(usiz
     }
     progress(ops.len());
     dumps
+}
+
+/// A trace replayed once per reference emulator ([`execute_references`]).
+pub struct ReferenceReplay {
+    /// Each reference's board after the last op, in [`Reference::ALL`] order.
+    pub boards: [Board; 3],
+    /// Each reference's dumps, in the same order.
+    pub per_reference: [Vec<Dump>; 3],
+    /// The dumps voted pixel by pixel ([`sst1_board::vote`]): two of three, MAME's
+    /// where all differ.
+    pub dumps: Vec<Dump>,
+}
+
+impl ReferenceReplay {
+    /// A buffer of the boards' final state, voted pixel by pixel.
+    pub fn vote_buffer(&self, which: BufferKind) -> Vec<u16> {
+        let [a, b, c] = self.boards.each_ref().map(|board| board.dump_buffer(which));
+        vote(&a, &b, &c)
+    }
+}
+
+/// Runs `ops` three times, each on a board built from `config` with one reference
+/// emulator's profile ([`Reference::profile`]), on three threads, and votes each dump.
+///
+/// This is the conformance pass rule as a model: where the three profiles reproduce
+/// their emulators, the voted dumps are the goldens' two-of-three majority, whatever
+/// history each reference took to its pixels. It costs three replays. `progress` follows
+/// MAME's replay, as [`execute`]'s does.
+pub fn execute_references(
+    ops: &[TraceOp],
+    config: BoardConfig,
+    progress: impl FnMut(usize),
+) -> ReferenceReplay {
+    let replay = |reference: Reference, progress: &mut dyn FnMut(usize)| {
+        let mut board = Board::new(config);
+        board.set_profile(reference.profile());
+        let dumps = execute(ops, &mut board, progress);
+        (board, dumps)
+    };
+    let [mame, dosbox, box86] = Reference::ALL;
+    let (first, second, third) = std::thread::scope(|scope| {
+        let second = scope.spawn(|| replay(dosbox, &mut |_| {}));
+        let third = scope.spawn(|| replay(box86, &mut |_| {}));
+        let mut progress = progress;
+        let first = replay(mame, &mut progress);
+        let join = |handle: std::thread::ScopedJoinHandle<'_, (Board, Vec<Dump>)>| {
+            handle
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+        };
+        (first, join(second), join(third))
+    });
+    let dumps = first
+        .1
+        .iter()
+        .zip(&second.1)
+        .zip(&third.1)
+        .map(|((a, b), c)| Dump {
+            buffer: a.buffer,
+            file: a.file.clone(),
+            width: a.width,
+            height: a.height,
+            data: vote(&a.data, &b.data, &c.data),
+        })
+        .collect();
+    ReferenceReplay {
+        boards: [first.0, second.0, third.0],
+        per_reference: [first.1, second.1, third.1],
+        dumps,
+    }
 }
 
 /// A replay's output could not be written.

@@ -1,6 +1,15 @@
 //! Conformance: one test per trace dump, judged by the pass rule of
 //! `traces/conformance/README.md` against the three reference emulators' goldens.
 //!
+//! Each trace is replayed once per reference emulator's profile
+//! ([`sst1_board::Reference::profile`]) and the three outputs are voted pixel by pixel
+//! ([`sst1_trace::execute_references`]). A dump's test checks two things:
+//! - each reference profile's dump equals that emulator's golden exactly, except for the
+//!   gaps listed in `traces/reference-gaps.toml` (`"reference/trace/buffer"` tables, with
+//!   a `reason` and `max_pixels`): this pins every accuracy switch to what its emulator
+//!   does;
+//! - the voted dump meets the pass rule, except for `traces/known-failures.toml`.
+//!
 //! Per pixel: where all goldens agree (consensus) ours must equal them; where two of three
 //! agree (majority) ours must equal the majority; where all differ nothing is required.
 //! `mode_800x600` has goldens from two emulators only: a pixel counts only where both agree.
@@ -22,11 +31,11 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
-use sst1_board::Board;
+use sst1_board::{Board, Reference};
 use sst1_regs::RegisterBus;
-use sst1_trace::{execute, load_trace, rgb565_to_rgb8, Dump};
+use sst1_trace::{execute, execute_references, load_trace, rgb565_to_rgb8, Dump};
 
-/// The reference emulators, in the order the report names them.
+/// The reference emulators' golden folders, in [`Reference::ALL`] order.
 const ORACLES: [&str; 3] = ["mame", "dosbox-staging", "86box"];
 
 fn repo() -> PathBuf {
@@ -35,6 +44,10 @@ fn repo() -> PathBuf {
 
 fn known_failures_path() -> PathBuf {
     repo().join("traces/known-failures.toml")
+}
+
+fn reference_gaps_path() -> PathBuf {
+    repo().join("traces/reference-gaps.toml")
 }
 
 /// `target/` of this build: `CARGO_TARGET_DIR`, else three levels above the test binary
@@ -53,14 +66,15 @@ fn target_dir() -> PathBuf {
 // ---------------------------------------------------------------------------------------
 // Replays, once per trace per test process.
 
-/// The dumps of one replay, or why the trace could not be loaded.
-type Replay = Result<Vec<Dump>, String>;
+/// The voted dumps and each reference profile's dumps (in [`Reference::ALL`] order) of
+/// one replay, or why the trace could not be loaded.
+type Replay = Result<(Vec<Dump>, [Vec<Dump>; 3]), String>;
 
 fn replay_trace(suite: &str, trace: &str) -> Replay {
     let path = repo().join(format!("traces/{suite}/traces/{trace}.trace.gz"));
     let trace = load_trace(&path).map_err(|e| e.to_string())?;
-    let mut board = Board::new(trace.board_config());
-    Ok(execute(&trace.ops, &mut board, |_| {}))
+    let replay = execute_references(&trace.ops, trace.board_config(), |_| {});
+    Ok((replay.dumps, replay.per_reference))
 }
 
 fn cached_replay(suite: &'static str, trace: &'static str) -> Arc<Replay> {
@@ -311,17 +325,23 @@ struct KnownFailure {
     max_pixels: Option<u64>,
 }
 
-fn read_known_failures() -> BTreeMap<String, KnownFailure> {
-    match std::fs::read_to_string(known_failures_path()) {
-        Ok(text) => toml::from_str(&text)
-            .unwrap_or_else(|e| panic!("traces/known-failures.toml is malformed: {e}")),
+fn read_list(path: &Path) -> BTreeMap<String, KnownFailure> {
+    match std::fs::read_to_string(path) {
+        Ok(text) => {
+            toml::from_str(&text).unwrap_or_else(|e| panic!("{} is malformed: {e}", path.display()))
+        }
         Err(_) => BTreeMap::new(),
     }
 }
 
 fn known_failures() -> &'static BTreeMap<String, KnownFailure> {
     static KNOWN: OnceLock<BTreeMap<String, KnownFailure>> = OnceLock::new();
-    KNOWN.get_or_init(read_known_failures)
+    KNOWN.get_or_init(|| read_list(&known_failures_path()))
+}
+
+fn reference_gaps() -> &'static BTreeMap<String, KnownFailure> {
+    static GAPS: OnceLock<BTreeMap<String, KnownFailure>> = OnceLock::new();
+    GAPS.get_or_init(|| read_list(&reference_gaps_path()))
 }
 
 const KNOWN_FAILURES_HEADER: &str = "\
@@ -334,13 +354,26 @@ const KNOWN_FAILURES_HEADER: &str = "\
 # unlisted dump fails, and when a listed one breaks more than max_pixels pixels.
 # `UPDATE_KNOWN_FAILURES=1 cargo test -p sst1-trace --test conformance` rewrites this file
 # from the results, keeping the reasons already written.
+# The dumps are the per-pixel vote of the three reference profiles
+# (sst1_trace::execute_references); docs/accuracy.md has the single-board numbers.
 ";
 
-/// Records `failing` for `key` in the known-failures file (update mode).
-fn update_known_failure(key: &str, failing: u64) {
+const REFERENCE_GAPS_HEADER: &str = "\
+# Where a reference emulator's profile (sst1_board::Reference::profile) does not yet
+# reproduce that emulator's golden dump exactly. One table per dump and reference, named
+# \"reference/trace/buffer\" (reference: the golden folder, mame, dosbox-staging or 86box):
+#   reason     what the profile does not model
+#   max_pixels the number of pixels that differ from that golden
+# crates/trace/tests/conformance.rs fails when a listed dump matches (remove it), when an
+# unlisted one differs, and when a listed one differs on more than max_pixels pixels.
+# `UPDATE_KNOWN_FAILURES=1 cargo test -p sst1-trace --test conformance` rewrites this file.
+";
+
+/// Records `failing` for `key` in the list at `path` (update mode).
+fn update_list(path: &Path, header: &str, key: &str, failing: u64) {
     static LOCK: Mutex<()> = Mutex::new(());
     let _guard = LOCK.lock().unwrap_or_else(|e| e.into_inner());
-    let mut entries = read_known_failures();
+    let mut entries = read_list(path);
     if failing == 0 {
         entries.remove(key);
     } else {
@@ -355,14 +388,78 @@ fn update_known_failure(key: &str, failing: u64) {
             },
         );
     }
-    let mut text = KNOWN_FAILURES_HEADER.to_owned();
+    let mut text = header.to_owned();
     for (key, entry) in &entries {
         let _ = write!(text, "\n[{key:?}]\nreason = {:?}\n", entry.reason);
         if let Some(max) = entry.max_pixels {
             let _ = writeln!(text, "max_pixels = {max}");
         }
     }
-    std::fs::write(known_failures_path(), text).expect("write traces/known-failures.toml");
+    std::fs::write(path, text).unwrap_or_else(|e| panic!("write {}: {e}", path.display()));
+}
+
+fn updating() -> bool {
+    std::env::var_os("UPDATE_KNOWN_FAILURES").is_some_and(|v| v == "1")
+}
+
+/// Each reference profile's dump against its own emulator's golden: `None` if it
+/// matches or its listed gap covers it, else why not.
+fn check_reference_fidelity(
+    suite: &str,
+    name: &str,
+    key: &str,
+    per_reference: &[Vec<Dump>; 3],
+) -> Option<String> {
+    let file = format!("{name}.raw");
+    let mut problems = String::new();
+    for (reference, dumps) in Reference::ALL.iter().zip(per_reference) {
+        let Some(golden) = load_golden(suite, reference.golden_dir(), name) else {
+            continue;
+        };
+        let Some(ours) = dumps.iter().find(|d| d.file == file) else {
+            continue;
+        };
+        let differing = if ours.data.len() == golden.len() {
+            ours.data
+                .iter()
+                .zip(&golden)
+                .filter(|(a, b)| a != b)
+                .count() as u64
+        } else {
+            golden.len() as u64
+        };
+        let gap_key = format!("{}/{key}", reference.golden_dir());
+        if updating() {
+            update_list(
+                &reference_gaps_path(),
+                REFERENCE_GAPS_HEADER,
+                &gap_key,
+                differing,
+            );
+            continue;
+        }
+        let listed = reference_gaps().get(&gap_key);
+        match (differing, listed) {
+            (0, None) => {}
+            (0, Some(_)) => {
+                let _ = writeln!(
+                    problems,
+                    "{suite}/{name}: the {reference:?} profile now reproduces its golden: \
+                     remove [\"{gap_key}\"] from traces/reference-gaps.toml"
+                );
+            }
+            (n, Some(gap)) if gap.max_pixels.is_some_and(|max| n <= max) => {}
+            (n, _) => {
+                let _ = writeln!(
+                    problems,
+                    "{suite}/{name}: the {reference:?} profile differs from its golden on {n} \
+                     pixels (traces/reference-gaps.toml allows {})",
+                    listed.and_then(|g| g.max_pixels).unwrap_or(0)
+                );
+            }
+        }
+    }
+    (!problems.is_empty()).then_some(problems)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -372,10 +469,11 @@ fn check_dump(suite: &'static str, trace: &'static str, buffer: &str) {
     let name = format!("{trace}_{buffer}");
     let key = format!("{trace}/{buffer}");
     let replay = cached_replay(suite, trace);
-    let dumps = match replay.as_ref() {
-        Ok(dumps) => dumps,
+    let (dumps, per_reference) = match replay.as_ref() {
+        Ok((dumps, per_reference)) => (dumps, per_reference),
         Err(e) => panic!("{suite}/{trace}: cannot load the trace: {e}"),
     };
+    let fidelity = check_reference_fidelity(suite, &name, &key, per_reference);
     let file = format!("{name}.raw");
     let ours = dumps
         .iter()
@@ -393,13 +491,19 @@ fn check_dump(suite: &'static str, trace: &'static str, buffer: &str) {
 
     let outcome = judge(&goldens, ours);
     let failing = outcome.failing();
-    if std::env::var_os("UPDATE_KNOWN_FAILURES").is_some_and(|v| v == "1") {
-        update_known_failure(&key, failing);
+    if updating() {
+        update_list(&known_failures_path(), KNOWN_FAILURES_HEADER, &key, failing);
         return;
+    }
+    if let Some(problems) = &fidelity {
+        eprint!("{problems}");
     }
     let known = known_failures().get(&key);
     let verdict = match (failing, known) {
-        (0, None) => return,
+        (0, None) => {
+            assert!(fidelity.is_none(), "{}", fidelity.unwrap_or_default());
+            return;
+        }
         (0, Some(_)) => {
             panic!("{suite}/{name} now passes: remove [\"{key}\"] from traces/known-failures.toml")
         }
@@ -422,14 +526,16 @@ fn check_dump(suite: &'static str, trace: &'static str, buffer: &str) {
                 "known failure ({reason}): {}",
                 report(suite, &name, ours, &goldens, &outcome)
             );
+            assert!(fidelity.is_none(), "{}", fidelity.unwrap_or_default());
             return;
         }
     };
     let text = report(suite, &name, ours, &goldens, &outcome);
     let dir = write_pngs(suite, &name, ours, &goldens[0].1, &outcome);
     panic!(
-        "{text}  images: {}/{name}_{{expected,actual,diff}}.png\n{verdict}",
-        dir.display()
+        "{text}  images: {}/{name}_{{expected,actual,diff}}.png\n{verdict}\n{}",
+        dir.display(),
+        fidelity.unwrap_or_default()
     );
 }
 
@@ -562,7 +668,7 @@ fn every_golden_dump_has_a_test() {
     }
 }
 
-/// Every known-failures entry names a dump that has a test.
+/// Every known-failures and reference-gaps entry names a dump that has a test.
 #[test]
 fn known_failures_name_existing_dumps() {
     for key in known_failures().keys() {
@@ -576,6 +682,26 @@ fn known_failures_name_existing_dumps() {
                 })
             });
         assert!(found, "traces/known-failures.toml: no dump named {key}");
+    }
+    for key in reference_gaps().keys() {
+        let dump = ORACLES
+            .iter()
+            .find_map(|oracle| key.strip_prefix(&format!("{oracle}/")));
+        let found = dump.is_some_and(|dump| {
+            [conformance::LISTED, glide_sdk::LISTED]
+                .iter()
+                .any(|listed| {
+                    listed.iter().any(|(trace, buffers)| {
+                        buffers
+                            .iter()
+                            .any(|buffer| dump == format!("{trace}/{buffer}"))
+                    })
+                })
+        });
+        assert!(
+            found,
+            "traces/reference-gaps.toml: no reference dump named {key}"
+        );
     }
 }
 

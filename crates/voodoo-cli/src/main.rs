@@ -7,14 +7,14 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
 use sst1_board::{AccuracyProfile, Board, BufferKind};
 use sst1_regs::map;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
-    encode_binary, execute, load_trace, read_trace, rgb565_to_rgb8, write_dumps, write_text, Dump,
-    OpCounts, Trace,
+    encode_binary, execute, execute_references, load_trace, read_trace, rgb565_to_rgb8,
+    write_dumps, write_text, Dump, OpCounts, Trace,
 };
 
 /// The trace `voodoo demo` replays: Gouraud-shaded triangles with 4×4 dithering.
@@ -44,14 +44,23 @@ enum Command {
         /// Write the front (displayed) buffer at the end as a PNG.
         #[arg(long)]
         png: Option<PathBuf>,
-        /// Print the pixel and command counters at the end.
+        /// How the board is modelled: `vote` replays the trace once per reference
+        /// emulator (MAME, DOSBox Staging, 86Box profiles) and keeps, per pixel, the value
+        /// two of them write (the conformance pass rule; three times the work, on three
+        /// threads); `single` replays it once with one accuracy profile. Default: `vote`,
+        /// or `single` with `--profile`.
+        #[arg(long, value_enum)]
+        model: Option<Model>,
+        /// Print the pixel and command counters at the end (with `--model vote`: those
+        /// of the MAME-profile board).
         #[arg(long)]
         stats: bool,
         /// Write the counters as JSON to this file.
         #[arg(long, value_name = "FILE")]
         stats_json: Option<PathBuf>,
-        /// Accuracy profile as JSON: every disputed behaviour, or only those to change,
-        /// e.g. `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see docs/accuracy.md).
+        /// Accuracy profile as JSON for `--model single`: every disputed behaviour, or
+        /// only those to change, e.g. `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see
+        /// docs/accuracy.md).
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
     },
@@ -83,6 +92,15 @@ enum Command {
     },
 }
 
+/// How `voodoo replay` models the board.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum Model {
+    /// One board per reference emulator's profile, voted pixel by pixel.
+    Vote,
+    /// One board with one accuracy profile.
+    Single,
+}
+
 /// Let a closed output pipe (`voodoo info t.trace | head`) end the process quietly, as
 /// other command-line tools do, instead of panicking in `println!`.
 fn restore_sigpipe() {
@@ -101,10 +119,11 @@ fn main() -> ExitCode {
             trace,
             out,
             png,
+            model,
             stats,
             stats_json,
             profile,
-        } => load_profile(profile.as_deref()).and_then(|profile| {
+        } => resolve_model(model, profile.as_deref()).and_then(|profile| {
             replay(
                 &trace,
                 &out,
@@ -128,7 +147,20 @@ fn main() -> ExitCode {
     }
 }
 
-/// Runs a trace on a fresh board, with a progress bar when stderr is a terminal.
+/// The single board's profile, or `None` for the reference vote.
+fn resolve_model(
+    model: Option<Model>,
+    profile: Option<&Path>,
+) -> Result<Option<AccuracyProfile>, String> {
+    match (model, profile) {
+        (Some(Model::Vote), Some(_)) => {
+            Err("--profile sets up one board: use it with --model single".to_string())
+        }
+        (Some(Model::Vote), None) | (None, None) => Ok(None),
+        (Some(Model::Single), _) | (None, Some(_)) => load_profile(profile).map(Some),
+    }
+}
+
 /// Reads an accuracy profile from a JSON file; members left out keep their defaults.
 fn load_profile(path: Option<&Path>) -> Result<AccuracyProfile, String> {
     let Some(path) = path else {
@@ -138,9 +170,18 @@ fn load_profile(path: Option<&Path>) -> Result<AccuracyProfile, String> {
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-fn run(trace: &Trace, profile: AccuracyProfile) -> (Board, Vec<Dump>) {
-    let mut board = Board::new(trace.board_config());
-    board.set_profile(profile);
+/// What a replay leaves: a board to report on, the front buffer and the dumps.
+struct Replayed {
+    /// The board (with the reference vote: the MAME-profile board).
+    board: Board,
+    /// The front buffer after the last op (voted, with the reference vote).
+    front: Vec<u16>,
+    dumps: Vec<Dump>,
+}
+
+/// Runs a trace on one board with `profile`, or on one board per reference emulator and
+/// votes (`None`), with a progress bar when stderr is a terminal.
+fn run(trace: &Trace, profile: Option<AccuracyProfile>) -> Replayed {
     let bar = if std::io::stderr().is_terminal() {
         let bar = ProgressBar::new(trace.ops.len() as u64);
         if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} ops {elapsed}") {
@@ -150,15 +191,38 @@ fn run(trace: &Trace, profile: AccuracyProfile) -> (Board, Vec<Dump>) {
     } else {
         ProgressBar::hidden()
     };
-    let dumps = execute(&trace.ops, &mut board, |done| bar.set_position(done as u64));
+    let progress = |done: usize| bar.set_position(done as u64);
+    let replayed = match profile {
+        Some(profile) => {
+            let mut board = Board::new(trace.board_config());
+            board.set_profile(profile);
+            let dumps = execute(&trace.ops, &mut board, progress);
+            let front = board.dump_buffer(BufferKind::Front);
+            Replayed {
+                board,
+                front,
+                dumps,
+            }
+        }
+        None => {
+            let replay = execute_references(&trace.ops, trace.board_config(), progress);
+            let front = replay.vote_buffer(BufferKind::Front);
+            let [board, _, _] = replay.boards;
+            Replayed {
+                board,
+                front,
+                dumps: replay.dumps,
+            }
+        }
+    };
     bar.finish_and_clear();
-    (board, dumps)
+    replayed
 }
 
-/// Writes the board's front buffer as an RGB PNG (RGB565 expanded by bit replication).
-fn write_front_png(board: &Board, path: &Path) -> Result<(u32, u32), String> {
-    let (width, height) = board.display_size();
-    let pixels = board.dump_buffer(BufferKind::Front);
+/// Writes the front buffer as an RGB PNG (RGB565 expanded by bit replication).
+fn write_front_png(replayed: &Replayed, path: &Path) -> Result<(u32, u32), String> {
+    let (width, height) = replayed.board.display_size();
+    let pixels = &replayed.front;
     let rgb: Vec<u8> = pixels.iter().flat_map(|&p| rgb565_to_rgb8(p)).collect();
     let image = image::RgbImage::from_raw(width, height, rgb)
         .ok_or_else(|| format!("front buffer is not {width}x{height}"))?;
@@ -194,16 +258,17 @@ fn replay(
     png: Option<&Path>,
     stats: bool,
     stats_json: Option<&Path>,
-    profile: AccuracyProfile,
+    profile: Option<AccuracyProfile>,
 ) -> Result<(), String> {
     let trace = load_trace(path).map_err(|e| e.to_string())?;
-    let (board, dumps) = run(&trace, profile);
+    let replayed = run(&trace, profile);
+    let (board, dumps) = (&replayed.board, &replayed.dumps);
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    for written in write_dumps(&dumps, out).map_err(|e| e.to_string())? {
+    for written in write_dumps(dumps, out).map_err(|e| e.to_string())? {
         println!("wrote {}", written.display());
     }
     if let Some(png) = png {
-        let (w, h) = write_front_png(&board, png)?;
+        let (w, h) = write_front_png(&replayed, png)?;
         println!("wrote {} ({w}x{h})", png.display());
     }
     if stats || stats_json.is_some() {
@@ -232,8 +297,8 @@ fn replay(
 
 fn demo(png: &Path) -> Result<(), String> {
     let trace = read_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
-    let (board, _) = run(&trace, AccuracyProfile::default());
-    let (w, h) = write_front_png(&board, png)?;
+    let replayed = run(&trace, Some(AccuracyProfile::default()));
+    let (w, h) = write_front_png(&replayed, png)?;
     println!(
         "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",
         png.display()
