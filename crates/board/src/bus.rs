@@ -72,9 +72,17 @@ impl Board {
         let cp = sst1_regs::FbzColorPath(self.fbi.reg(addr::FBZ_COLOR_PATH));
         let init3 = sst1_regs::FbiInit3(self.fbi.reg(addr::FBI_INIT3));
         let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
+        let profile = self.fbi.profile();
+        // With ParamOrigin::RoundedVertex (86Box) the correction lasts this triangle only.
+        let saved = (cp.param_adjust() && !profile.param_origin.writes_back()).then(|| {
+            let starts: Vec<_> = self.tmus.iter().map(|t| t.start_registers()).collect();
+            (self.fbi.params, starts)
+        });
         if cp.param_adjust() {
-            let z_width = self.fbi.profile().subpixel_z;
-            let (dx, dy) = self.fbi.params.subpixel_adjust(z_width);
+            let (dx, dy) = self
+                .fbi
+                .params
+                .subpixel_adjust(profile.subpixel_z, profile.param_origin);
             if texturing {
                 for t in &mut self.tmus {
                     t.subpixel_adjust(dx, dy);
@@ -90,6 +98,12 @@ impl Board {
             });
         } else {
             self.fbi.draw_triangle(&mut NoTexture);
+        }
+        if let Some((params, starts)) = saved {
+            self.fbi.params = params;
+            for (t, start) in self.tmus.iter_mut().zip(starts) {
+                t.restore_start_registers(start);
+            }
         }
     }
 

@@ -21,8 +21,8 @@ use pixelfx::fog::{
     FogBothSources, FogConstantMult, FogDifference, FogIteratedAlpha, FogTableDepth,
 };
 use pixelfx::profile::{
-    AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FloatOverflow,
-    LfbWordSwap, PatternRow, SubpixelZ, WFloatEdges,
+    AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
+    FloatOverflow, LfbWordSwap, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
 };
 use texelfx::{CoordRounding, DecalInvert, LodCalc, LodDither, NccUpdate, PerspDivide, Trilinear};
 
@@ -68,8 +68,10 @@ impl Reference {
                 px.lfb_word_swap = LfbWordSwap::Always;
                 px.float_overflow = FloatOverflow::Wrap;
                 px.subpixel_z = SubpixelZ::Wrap32;
+                px.param_origin = ParamOrigin::VertexPixel;
                 px.alpha_test_input = AlphaTestInput::Combined;
                 px.dither_2x2 = DitherMatrix2x2::Mame;
+                px.fastfill_dither = FastfillDither::Dithered;
                 px.fog.difference = FogDifference::ClampedToByte;
                 px.fog.iterated_alpha = FogIteratedAlpha::MameLowByte;
                 px.fog.constant_mult = FogConstantMult::FogColor;
@@ -95,8 +97,10 @@ impl Reference {
                 px.lfb_word_swap = LfbWordSwap::Always;
                 px.float_overflow = FloatOverflow::Saturate;
                 px.subpixel_z = SubpixelZ::Wide64;
+                px.param_origin = ParamOrigin::VertexPixel;
                 px.alpha_test_input = AlphaTestInput::AOther;
                 px.dither_2x2 = DitherMatrix2x2::Classic;
+                px.fastfill_dither = FastfillDither::Dithered;
                 px.fog.difference = FogDifference::Signed;
                 px.fog.iterated_alpha = FogIteratedAlpha::Clamped;
                 px.fog.constant_mult = FogConstantMult::FogColor;
@@ -122,8 +126,10 @@ impl Reference {
                 px.lfb_word_swap = LfbWordSwap::SpecIgnoredFor32Bit;
                 px.float_overflow = FloatOverflow::Indefinite;
                 px.subpixel_z = SubpixelZ::Wrap32;
+                px.param_origin = ParamOrigin::RoundedVertex;
                 px.alpha_test_input = AlphaTestInput::Combined;
                 px.dither_2x2 = DitherMatrix2x2::Classic;
+                px.fastfill_dither = FastfillDither::Truncated;
                 px.fog.difference = FogDifference::Signed;
                 px.fog.iterated_alpha = FogIteratedAlpha::Clamped;
                 px.fog.constant_mult = FogConstantMult::AddToColor;

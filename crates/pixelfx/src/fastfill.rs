@@ -11,6 +11,7 @@ use sst1_regs::{addr, Rgba};
 
 use crate::fbi::Fbi;
 use crate::pipeline::DrawState;
+use crate::profile::FastfillDither;
 
 impl Fbi {
     /// Execute the FASTFILL command.
@@ -39,11 +40,15 @@ impl Fbi {
         let depth = self.reg(addr::ZA_COLOR) as u16;
         // The 4x4 cell of dithered colours, indexed [y & 3][x & 3].
         let mut cell = [[0u16; 4]; 4];
+        let dither = match self.profile().fastfill_dither {
+            FastfillDither::Dithered => st.dither,
+            FastfillDither::Truncated => sst1_dither::DitherKind::Off,
+        };
         for (cy, row) in cell.iter_mut().enumerate() {
             for (cx, v) in row.iter_mut().enumerate() {
-                *v = self.dither.rgb565(
-                    st.dither, cx as u32, cy as u32, colour.r, colour.g, colour.b,
-                );
+                *v = self
+                    .dither
+                    .rgb565(dither, cx as u32, cy as u32, colour.r, colour.g, colour.b);
             }
         }
         for y in low..high {

@@ -46,6 +46,48 @@ pub struct TriangleParams {
     pub dwdy: Fx32_32,
 }
 
+/// The pixel from which the iterators count, and what subpixel correction does.
+///
+/// The iterated value of a pixel is `start + dx * d/dx + dy * d/dy`, with `(dx, dy)` its
+/// offset from an origin pixel derived from vertex A.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum ParamOrigin {
+    /// Vertex A's own pixel, `A >> 4`; subpixel correction moves the start values by
+    /// `8 - (A & 15)` sixteenths, to that pixel's centre, and writes them back (spec 5.16's
+    /// "Important Note"; MAME, DOSBox Staging).
+    #[default]
+    VertexPixel,
+    /// The first pixel the rasterizer samples, `(A + 7) >> 4` (A rounded to the nearest
+    /// pixel centre, halves down); subpixel correction moves the start values by
+    /// `8 - (A & 15)`, plus 16 when `A & 15 > 8`, to that pixel's centre, in a copy that
+    /// lasts one triangle (86Box `voodoo_triangle`: `dx`, `dy`, `state.base_*`).
+    RoundedVertex,
+}
+
+impl ParamOrigin {
+    /// The origin pixel for the 12.4 vertex coordinate `v`.
+    #[inline]
+    pub fn pixel(self, v: Fx12_4) -> i32 {
+        match self {
+            ParamOrigin::VertexPixel => i32::from(v) >> 4,
+            ParamOrigin::RoundedVertex => (i32::from(v) + 7) >> 4,
+        }
+    }
+
+    /// The 12.4 offset from `v` to the centre of its origin pixel (subpixel correction).
+    #[inline]
+    pub fn subpixel_offset(self, v: Fx12_4) -> i32 {
+        (self.pixel(v) << 4) + 8 - i32::from(v)
+    }
+
+    /// Whether subpixel correction writes the corrected start values back.
+    pub fn writes_back(self) -> bool {
+        self == ParamOrigin::VertexPixel
+    }
+}
+
 /// What a float register write gives when the value does not fit the fixed format.
 ///
 /// All three references truncate toward zero for values in range; they differ when the
@@ -212,10 +254,11 @@ impl TriangleParams {
     /// is corrected twice, as on hardware.
     ///
     /// Returns the 12.4 offsets `(dx, dy)` so that the TMUs can apply the same correction.
-    pub fn subpixel_adjust(&mut self, z_width: SubpixelZ) -> (i32, i32) {
-        // Source: MAME and DOSBox Staging: offset = 8 - (coordinate & 15), in 1/16 pixel.
-        let dx = 8 - (self.ax as i32 & 15);
-        let dy = 8 - (self.ay as i32 & 15);
+    pub fn subpixel_adjust(&mut self, z_width: SubpixelZ, origin: ParamOrigin) -> (i32, i32) {
+        // Source: MAME and DOSBox Staging: offset = 8 - (coordinate & 15), in 1/16 pixel;
+        // 86Box adds 16 for a fraction above 8 (ParamOrigin::RoundedVertex).
+        let dx = origin.subpixel_offset(self.ax);
+        let dy = origin.subpixel_offset(self.ay);
         for i in 0..4 {
             self.start[i] = self.start[i].wrapping_add(
                 (dy.wrapping_mul(self.dy[i])
@@ -314,10 +357,13 @@ mod tests {
         };
         p.dx[0] = 0x1000;
         p.dy[0] = 0x2000;
-        assert_eq!(p.subpixel_adjust(SubpixelZ::Wrap32), (4, 8));
+        assert_eq!(
+            p.subpixel_adjust(SubpixelZ::Wrap32, ParamOrigin::VertexPixel),
+            (4, 8)
+        );
         // start += (8 * 0x2000 + 4 * 0x1000) >> 4
         assert_eq!(p.start[0], 0x1400);
-        p.subpixel_adjust(SubpixelZ::Wrap32);
+        p.subpixel_adjust(SubpixelZ::Wrap32, ParamOrigin::VertexPixel);
         assert_eq!(p.start[0], 0x2800);
     }
 }

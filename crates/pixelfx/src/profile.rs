@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 pub use crate::iter::WFloatEdges;
-pub use crate::params::{FloatOverflow, SubpixelZ};
+pub use crate::params::{FloatOverflow, ParamOrigin, SubpixelZ};
 pub use crate::setup::EdgeRounding;
 pub use sst1_dither::DitherMatrix2x2;
 
@@ -66,6 +66,17 @@ pub enum AlphaTestInput {
     AOther,
 }
 
+/// Whether FASTFILL dithers `color1` when `fbzMode` enables dithering.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum FastfillDither {
+    /// Dithered with the 4x4 or 2x2 matrix as `fbzMode` selects (spec 5.23; MAME, DOSBox
+    /// Staging).
+    #[default]
+    Dithered,
+    /// `color1` truncated to RGB565 whatever `fbzMode` says (86Box `voodoo_fastfill`).
+    Truncated,
+}
+
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(default)]
@@ -78,8 +89,10 @@ pub struct PixelProfile {
     pub lfb_word_swap: LfbWordSwap,
     pub float_overflow: FloatOverflow,
     pub subpixel_z: SubpixelZ,
+    pub param_origin: ParamOrigin,
     pub alpha_test_input: AlphaTestInput,
     pub dither_2x2: DitherMatrix2x2,
+    pub fastfill_dither: FastfillDither,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,
 }

@@ -91,7 +91,8 @@ impl Fbi {
         );
         let mode = FbzMode(value(ZM, st.mode.0));
         let flip = mode.y_origin();
-        let (ax, ay) = ((self.params.ax >> 4) as i32, (self.params.ay >> 4) as i32);
+        let origin = self.profile().param_origin;
+        let (ax, ay) = (origin.pixel(self.params.ax), origin.pixel(self.params.ay));
         let params = self.params;
         for span in setup::spans(&params, self.profile().edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);

@@ -502,6 +502,17 @@ impl Tmu {
         }
     }
 
+    /// The S, T, W start registers (.32 fixed point), e.g. to undo a subpixel correction
+    /// that lasts one triangle ([`Tmu::restore_start_registers`]).
+    pub fn start_registers(&self) -> [i64; 3] {
+        self.start
+    }
+
+    /// Sets the S, T, W start registers back to values [`Tmu::start_registers`] returned.
+    pub fn restore_start_registers(&mut self, start: [i64; 3]) {
+        self.start = start;
+    }
+
     /// The TMU's output for one pixel.
     ///
     /// `dx`, `dy`: integer pixel offsets from vertex A's integer position; `x`, `y`: screen
