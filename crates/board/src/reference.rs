@@ -24,7 +24,9 @@ use pixelfx::profile::{
     AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
     FloatOverflow, LfbWordSwap, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
 };
-use texelfx::{CoordRounding, DecalInvert, LodCalc, LodDither, NccUpdate, PerspDivide, Trilinear};
+use texelfx::{
+    CoordRounding, DecalInvert, LodCalc, LodDither, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
+};
 
 use crate::AccuracyProfile;
 
@@ -82,6 +84,7 @@ impl Reference {
                 px.blend.dither_2x2 = Dither2x2Blend::SameAsArithmetic;
                 tx.lod = LodCalc::Mame;
                 tx.lod_dither = LodDither::Matrix4x4;
+                tx.rgb332_blue = Rgb332Blue::Replicated;
                 tx.ncc_update = NccUpdate::Immediate;
                 tx.trilinear = Trilinear::Ignored;
                 tx.coord_rounding = CoordRounding::TowardZero;
@@ -111,6 +114,7 @@ impl Reference {
                 px.blend.dither_2x2 = Dither2x2Blend::SameAsArithmetic;
                 tx.lod = LodCalc::Dosbox;
                 tx.lod_dither = LodDither::Matrix4x4;
+                tx.rgb332_blue = Rgb332Blue::DosboxTable;
                 tx.ncc_update = NccUpdate::OnTextureRegWrite;
                 tx.trilinear = Trilinear::Ignored;
                 tx.coord_rounding = CoordRounding::Floor;
@@ -140,6 +144,7 @@ impl Reference {
                 px.blend.dither_2x2 = Dither2x2Blend::SameAsArithmetic;
                 tx.lod = LodCalc::Box86;
                 tx.lod_dither = LodDither::Off;
+                tx.rgb332_blue = Rgb332Blue::Replicated;
                 tx.ncc_update = NccUpdate::Immediate;
                 tx.trilinear = Trilinear::Spec;
                 tx.coord_rounding = CoordRounding::Floor;

@@ -24,7 +24,7 @@
 //! `init_tmu_shared` and 86Box `voodoo_use_texture` agree on every format as read. (The
 //! spec's RGB565 green column `{g[5:0], r[5:4]}` is a typo for `{g[5:0], g[5:4]}`.)
 
-use crate::A8Expansion;
+use crate::{A8Expansion, Rgb332Blue};
 use sst1_ncc::Rgb8;
 
 /// Tables a texel decode may need.
@@ -35,6 +35,8 @@ pub(crate) struct Lookups<'a> {
     pub palette: &'a [Rgb8; 256],
     /// How A8 fills RGB.
     pub a8: A8Expansion,
+    /// How RGB332 expands blue.
+    pub rgb332_blue: Rgb332Blue,
 }
 
 /// Replicates a `bits`-wide value to 8 bits.
@@ -137,8 +139,15 @@ pub(crate) fn lut(tformat: u32, l: &Lookups<'_>) -> [u32; 256] {
 }
 
 /// `[r, g, b]` of an RGB 3-3-2 byte.
-fn rgb332(v: u32) -> [u8; 3] {
-    [expand(v >> 5, 3), expand(v >> 2, 3), expand(v, 2)]
+fn rgb332(v: u32, blue: Rgb332Blue) -> [u8; 3] {
+    let b = match blue {
+        Rgb332Blue::Replicated => expand(v, 2),
+        // Source: DOSBox Staging EXTRACT_332_TO_888 (see Rgb332Blue).
+        Rgb332Blue::DosboxTable => {
+            ((v << 6) & 0xc0 | (v << 4) & 0x30 | (v << 2) & 0xc0 | v & 0x03) as u8
+        }
+    };
+    [expand(v >> 5, 3), expand(v >> 2, 3), b]
 }
 
 /// `[r, g, b, a]` from an RGB triple and alpha.
@@ -151,7 +160,7 @@ pub(crate) fn decode(tformat: u32, raw: u32, l: &Lookups<'_>) -> [u8; 4] {
     let lo = (raw & 0xff) as u8;
     let hi = (raw >> 8) as u8;
     match tformat & 0xf {
-        0 => rgba(rgb332(raw), 0xff),
+        0 => rgba(rgb332(raw, l.rgb332_blue), 0xff),
         1 => rgba(l.ncc[usize::from(lo)], 0xff),
         2 => match l.a8 {
             A8Expansion::AlphaInRgb => [lo, lo, lo, lo],
@@ -174,7 +183,7 @@ pub(crate) fn decode(tformat: u32, raw: u32, l: &Lookups<'_>) -> [u8; 4] {
                 expand(p >> 18, 6),
             ]
         }
-        8 => rgba(rgb332(raw), hi),
+        8 => rgba(rgb332(raw, l.rgb332_blue), hi),
         9 => rgba(l.ncc[usize::from(lo)], hi),
         10 => to_rgba(rgb565(raw)),
         11 => to_rgba(argb1555(raw)),
@@ -193,6 +202,7 @@ mod tests {
             ncc,
             palette: pal,
             a8: A8Expansion::AlphaInRgb,
+            rgb332_blue: Rgb332Blue::Replicated,
         }
     }
 
@@ -222,10 +232,27 @@ mod tests {
     }
 
     #[test]
+    fn rgb332_dosbox_blue() {
+        let (ncc, pal) = tables();
+        let l = Lookups {
+            rgb332_blue: Rgb332Blue::DosboxTable,
+            ..lookups(&ncc, &pal)
+        };
+        // 0b101_011_10: blue 10 -> 10 10 00 10, bits 5:4 (10) ORed into the top: 0xa2.
+        assert_eq!(decode(0, 0xae, &l), [0xb6, 0x6d, 0xa2, 0xff]);
+        // Blue 0 with bits 5:4 = 11 reads 0xc0; blue 3 with them 00 reads 0xf3.
+        assert_eq!(decode(0, 0b0011_0000, &l)[2], 0xc0);
+        assert_eq!(decode(0, 0b0000_0011, &l)[2], 0xf3);
+        // ARGB8332 takes the same table for its low byte.
+        assert_eq!(decode(8, 0x7fae, &l), [0xb6, 0x6d, 0xa2, 0x7f]);
+    }
+
+    #[test]
     fn a8_white_variant() {
         let (ncc, pal) = tables();
         let l = Lookups {
             a8: A8Expansion::WhiteRgb,
+            rgb332_blue: Rgb332Blue::Replicated,
             ..lookups(&ncc, &pal)
         };
         assert_eq!(decode(2, 0x5a, &l), [0xff, 0xff, 0xff, 0x5a]);

@@ -107,6 +107,22 @@ pub enum A8Expansion {
     WhiteRgb,
 }
 
+/// The blue of an RGB332 texel (formats 0 and 8).
+///
+/// The spec's bit replication gives blue `b * 0x55` from its 2 bits (MAME, 86Box).
+/// DOSBox Staging's table (`EXTRACT_332_TO_888`) ORs bits 5:4 of the texel, green's low
+/// bits, into blue's top two bits in place of blue's own bits 3:2: the third term of its
+/// blue is masked with `0xc0` where `0x0c` replicates. Whole cells of
+/// `tex_8bit_formats` show it in DOSBox Staging's golden.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Rgb332Blue {
+    /// Spec, MAME, 86Box: `b b b b` (bit replication).
+    #[default]
+    Replicated,
+    /// DOSBox Staging: `(b | g[1:0]) 0 0 b`, with `g[1:0]` the texel's bits 5:4.
+    DosboxTable,
+}
+
 /// When writes to the NCC tables take effect.
 ///
 /// MAME and 86Box (the default) use a table from the next triangle on. DOSBox Staging
@@ -234,6 +250,8 @@ pub struct TexelProfile {
     pub bilinear: BilinearPrecision,
     /// A8 texel expansion.
     pub a8: A8Expansion,
+    /// RGB332 blue expansion.
+    pub rgb332_blue: Rgb332Blue,
     /// When NCC table writes take effect.
     pub ncc_update: NccUpdate,
     /// The trilinear bit.
@@ -610,6 +628,7 @@ impl Tmu {
             ncc: &self.ncc[usize::from(TextureMode(self.texture_mode).tnccselect())],
             palette: &self.palette,
             a8: self.profile.a8,
+            rgb332_blue: self.profile.rgb332_blue,
         }
     }
 }
