@@ -195,11 +195,31 @@ fn replay_takes_a_partial_profile() {
         let i = 2 * 640;
         u16::from_le_bytes([raw[i], raw[i + 1]]) >> 11
     };
-    assert_eq!(red_at_0_1(&["replay", "fill.trace"]), 17);
+    // One board with the default profile (classic 2x2 matrix), and with MAME's matrix.
+    assert_eq!(
+        red_at_0_1(&["replay", "fill.trace", "--model", "single"]),
+        17
+    );
     assert_eq!(
         red_at_0_1(&["replay", "fill.trace", "--profile", "mame.json"]),
         16
     );
+    // The reference vote (the default): MAME's matrix gives 16, DOSBox Staging's 17, and
+    // 86Box's undithered fill 0x85 >> 3 = 16, so two of three write 16.
+    assert_eq!(red_at_0_1(&["replay", "fill.trace"]), 16);
+    let out = voodoo(
+        &dir,
+        &[
+            "replay",
+            "fill.trace",
+            "--model",
+            "vote",
+            "--profile",
+            "mame.json",
+        ],
+    );
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--model single"));
     std::fs::write(dir.join("bad.json"), r#"{"pixel": {"dither_2x2": "Nope"}}"#).unwrap();
     let out = voodoo(&dir, &["replay", "fill.trace", "--profile", "bad.json"]);
     assert!(!out.status.success());

@@ -1,0 +1,190 @@
+//! Disputed behaviours that the reference profiles (`sst1_board::Reference`) brought in,
+//! one register program per switch, run once per choice (continuing `disputes2.rs`):
+//! FASTFILL dithering (`FastfillDither`), the iterator origin and the lifetime of the
+//! subpixel correction (`ParamOrigin`), and the blue of RGB332 texels (`Rgb332Blue`).
+//!
+//! Each test's doc comment says which value a real board would show for each choice.
+
+use firmware_tests::bits::{color_path, fbz};
+use firmware_tests::expect::{dither565, MATRIX_4X4};
+use firmware_tests::{
+    fastfill, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
+};
+use pixelfx::profile::{FastfillDither, ParamOrigin};
+use pixelfx::PixelProfile;
+use sst1_board::AccuracyProfile;
+use sst1_regs::addr;
+use texelfx::{Rgb332Blue, TexelProfile};
+
+const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
+
+fn board(pixel: PixelProfile, texel: TexelProfile) -> Emulator {
+    Emulator::booted_with(AccuracyProfile { pixel, texel })
+}
+
+// --- FASTFILL dithering: FastfillDither ------------------------------------------------
+
+/// A colour whose channels round differently across the dither matrix.
+const DITHERED: (u32, u32, u32) = (0x85, 0x41, 0x3c);
+
+/// FASTFILL of [`DITHERED`] with 4x4 dithering on; pixels 0..4 of row 1.
+fn fill_program(fastfill_dither: FastfillDither) -> [u16; 4] {
+    let mut p = board(
+        PixelProfile {
+            fastfill_dither,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(addr::FBZ_MODE, BASE | fbz::DITHER);
+    let (r, g, b) = DITHERED;
+    fastfill(&mut p, r << 16 | g << 8 | b, 0xffff);
+    std::array::from_fn(|x| p.read_pixel(Buffer::Back, x as u32, 1))
+}
+
+/// `FastfillDither::Dithered` (spec 5.23; MAME, DOSBox Staging; default): the fill is
+/// dithered like a triangle, matrix row 1 across the row.
+#[test]
+fn fastfill_dithered() {
+    let (r, g, b) = DITHERED;
+    let expected: [u16; 4] = std::array::from_fn(|x| dither565(r, g, b, MATRIX_4X4[1][x]));
+    assert_eq!(fill_program(FastfillDither::Dithered), expected);
+    // The matrix makes the row uneven, so the test tells the two choices apart.
+    assert_ne!(expected[0], expected[1]);
+}
+
+/// `FastfillDither::Truncated` (86Box): `color1` truncated to RGB565 on every pixel.
+#[test]
+fn fastfill_truncated() {
+    let (r, g, b) = DITHERED;
+    assert_eq!(
+        fill_program(FastfillDither::Truncated),
+        [rgb565_truncated(r, g, b); 4]
+    );
+}
+
+// --- iterator origin and subpixel correction: ParamOrigin -------------------------------
+
+/// Red iterates by 8 per pixel (12.12 `dRdX` = 8.0) from `startR` = 64 at vertex A =
+/// (10.75, 0); the triangle spans x 10..40 of rows 0..20. Dithering is off, so red 8-bit
+/// `v` reads as `v >> 3`. Returns red (5 bits) at x = 12 of row 4 after `triangles`
+/// triangles with the same start registers (the start values are written once).
+fn origin_program(param_origin: ParamOrigin, adjust: bool, triangles: u32) -> u16 {
+    let mut p = board(
+        PixelProfile {
+            param_origin,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    let cp = if adjust { color_path::PARAM_ADJUST } else { 0 };
+    p.write(addr::FBZ_COLOR_PATH, cp);
+    p.write(addr::FBZ_MODE, BASE);
+    let t = Triangle::flat([(10, 0), (40, 0), (10, 20)], 0xff00_0000);
+    for (reg, v) in [
+        (addr::VERTEX_AX, 10 << 4 | 12),
+        (addr::VERTEX_AY, 0),
+        (addr::VERTEX_BX, 40 << 4),
+        (addr::VERTEX_BY, 0),
+        (addr::VERTEX_CX, 10 << 4 | 12),
+        (addr::VERTEX_CY, 20 << 4),
+        (addr::START_R, 64 << 12),
+        (addr::D_R_DX, 8 << 12),
+        (addr::D_R_DY, 0),
+    ] {
+        p.write(reg, v);
+    }
+    for _ in 0..triangles {
+        p.write(addr::TRIANGLE_CMD, t.area_sign());
+    }
+    p.read_pixel(Buffer::Back, 12, 4) >> 11
+}
+
+/// `ParamOrigin::VertexPixel` (MAME, DOSBox Staging; default): the iterators count from
+/// A's pixel, 10: x = 12 reads 64 + 2 * 8 = 80 (red 10). Subpixel correction adds
+/// (8 - 12) / 16 pixel * 8 = -2 to the start and writes it back, so x = 12 reads 78
+/// (red 9) after one triangle and 80 - 5 * 2 = 70 (red 8) after five.
+#[test]
+fn param_origin_vertex_pixel() {
+    assert_eq!(origin_program(ParamOrigin::VertexPixel, false, 1), 80 >> 3);
+    assert_eq!(origin_program(ParamOrigin::VertexPixel, true, 1), 78 >> 3);
+    assert_eq!(origin_program(ParamOrigin::VertexPixel, true, 5), 70 >> 3);
+}
+
+/// `ParamOrigin::RoundedVertex` (86Box): A = 10.75 rounds to pixel 11, so x = 12 reads
+/// 64 + 8 = 72 (red 9). Subpixel correction moves the start by (24 - 12) / 16 pixel * 8 =
+/// +6, for one triangle only: 78 (9) after one triangle and after five.
+#[test]
+fn param_origin_rounded_vertex() {
+    assert_eq!(
+        origin_program(ParamOrigin::RoundedVertex, false, 1),
+        72 >> 3
+    );
+    assert_eq!(origin_program(ParamOrigin::RoundedVertex, true, 1), 78 >> 3);
+    assert_eq!(origin_program(ParamOrigin::RoundedVertex, true, 5), 78 >> 3);
+}
+
+// --- RGB332 blue: Rgb332Blue ------------------------------------------------------------
+
+/// Start of the texture region of the aperture (spec 4).
+const TEX_BASE: u32 = 0x80_0000;
+/// `textureMode` decal: `tc_zero_other` + `tc_add_clocal`, `tca_zero_other` +
+/// `tca_add_alocal` (bits 12, 18, 21, 28); format 0 (RGB332), point sampled.
+const DECAL_RGB332: u32 = 1 << 12 | 1 << 18 | 1 << 21 | 1 << 28;
+/// `fbzColorPath`: colour from the texture, texturing on (bit 27).
+const COLOR_PATH_TEXTURE: u32 = 1 | 1 << 27;
+
+/// The 2 x 2 LOD 7 of a 256 x 256 RGB332 texture with texel (0, 0) = `texel`, drawn at
+/// S = T = 0 by a flat triangle, undithered: the pixel at (4, 4).
+fn rgb332_program(rgb332_blue: Rgb332Blue, texel: u8) -> u16 {
+    let mut p = board(
+        PixelProfile::default(),
+        TexelProfile {
+            rgb332_blue,
+            ..Default::default()
+        },
+    );
+    p.write(addr::FBZ_MODE, BASE);
+    p.write(addr::TEXTURE_MODE, DECAL_RGB332);
+    // lodmin = lodmax = 7 (4.2 fixed point, spec 5.51).
+    p.write(addr::T_LOD, 28 | 28 << 6);
+    p.write(addr::TEX_BASE_ADDR, 0);
+    // Spec 8: LOD in address bits 20:17, T in 16:9; four 8-bit texels per write.
+    p.write(TEX_BASE | 7 << 17, u32::from(texel));
+    p.write(addr::FBZ_COLOR_PATH, COLOR_PATH_TEXTURE);
+    for reg in [
+        addr::START_S,
+        addr::D_S_DX,
+        addr::D_S_DY,
+        addr::START_T,
+        addr::D_T_DX,
+        addr::D_T_DY,
+    ] {
+        p.write(reg, 0);
+    }
+    triangle_fixed(
+        &mut p,
+        &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000),
+    );
+    p.read_pixel(Buffer::Back, 4, 4)
+}
+
+/// `Rgb332Blue::Replicated` (spec, MAME, 86Box; default): texel 0xae = R 101, G 011,
+/// B 10 expands to (0xb6, 0x6d, 0xaa).
+#[test]
+fn rgb332_blue_replicated() {
+    assert_eq!(
+        rgb332_program(Rgb332Blue::Replicated, 0xae),
+        rgb565_truncated(0xb6, 0x6d, 0xaa)
+    );
+}
+
+/// `Rgb332Blue::DosboxTable` (DOSBox Staging): blue 10 becomes 10 10 00 10 with the
+/// texel's bits 5:4 (10) ORed into its top bits: 0xa2, one step darker in RGB565.
+#[test]
+fn rgb332_blue_dosbox_table() {
+    assert_eq!(
+        rgb332_program(Rgb332Blue::DosboxTable, 0xae),
+        rgb565_truncated(0xb6, 0x6d, 0xa2)
+    );
+}
