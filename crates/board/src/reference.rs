@@ -122,8 +122,9 @@ impl Reference {
                 tx.persp_divide = PerspDivide::DosboxReciprocal;
             }
             Reference::Box86 => {
-                // UNVERIFIED: 86Box's edge rounding and W-to-float edges are not modelled
-                // as their own choices; the defaults stand in for them.
+                // UNVERIFIED: 86Box's W-to-float edges are not modelled as their own
+                // choice; the default stands in for it.
+                px.edge_rounding = EdgeRounding::Box86Fixed;
                 px.clip_right = ClipRightEdge::Exclusive;
                 px.aux_write = AuxWrite::MaskAndDepthOrAlphaPlanes;
                 px.pattern_row = PatternRow::Screen;

@@ -116,7 +116,10 @@ impl Fbi {
             return Command::None;
         }
         match offset & 0x3fc {
-            addr::TRIANGLE_CMD | addr::F_TRIANGLE_CMD => return Command::Triangle,
+            addr::TRIANGLE_CMD | addr::F_TRIANGLE_CMD => {
+                self.params.right_to_left = value & 1 << 31 != 0;
+                return Command::Triangle;
+            }
             addr::FASTFILL_CMD => return Command::Fastfill,
             addr::SWAPBUFFER_CMD => return Command::Swap,
             addr::NOP_CMD => {

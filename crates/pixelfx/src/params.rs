@@ -44,6 +44,9 @@ pub struct TriangleParams {
     pub start_w: Fx32_32,
     pub dwdx: Fx32_32,
     pub dwdy: Fx32_32,
+    /// Bit 31 of the last `triangleCMD` / `ftriangleCMD` write: set when the triangle
+    /// is walked right to left (spec 5.15: the sign of the area).
+    pub right_to_left: bool,
 }
 
 /// The pixel from which the iterators count, and what subpixel correction does.
