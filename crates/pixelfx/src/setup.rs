@@ -213,6 +213,39 @@ mod tests {
         assert_eq!(total, 7 + 6 + 5 + 4 + 3 + 2 + 1);
     }
 
+    /// A = (75, 27), B = (196, 80), C = (30, 85) in 1/16 pixel, walked left to right:
+    /// rows 2 and 4 have edge crossings that the float walk and 86Box's 16.16 walk
+    /// round to different pixels.
+    #[test]
+    fn box86_fixed_walk_differs_at_the_edges() {
+        let p = TriangleParams {
+            ax: 75,
+            ay: 27,
+            bx: 196,
+            by: 80,
+            cx: 30,
+            cy: 85,
+            ..Default::default()
+        };
+        let rows = |r: EdgeRounding| -> Vec<(i32, i32, i32)> {
+            spans(&p, r).map(|s| (s.y, s.start, s.stop)).collect()
+        };
+        assert_eq!(
+            rows(EdgeRounding::FloorHalfDown),
+            [(2, 4, 7), (3, 3, 9), (4, 3, 11)]
+        );
+        assert_eq!(
+            rows(EdgeRounding::Box86Fixed),
+            [(2, 4, 6), (3, 3, 9), (4, 2, 11)]
+        );
+        // Walked right to left, the same edges cross the wrong way round: no rows.
+        let mirrored = TriangleParams {
+            right_to_left: true,
+            ..p
+        };
+        assert_eq!(spans(&mirrored, EdgeRounding::Box86Fixed).count(), 0);
+    }
+
     #[test]
     fn degenerate_and_hostile_triangles() {
         assert_eq!(
@@ -235,5 +268,7 @@ mod tests {
         // Must not panic. 4096 rows are walked; the rows at the two sharp ends sample
         // spans narrower than half a pixel, which round to empty.
         assert_eq!(spans(&p, EdgeRounding::default()).count(), 4094);
+        // The fixed-point walk wraps in 32 bits as 86Box's does, without panicking.
+        let _ = spans(&p, EdgeRounding::Box86Fixed).count();
     }
 }
