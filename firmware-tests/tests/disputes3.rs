@@ -1,7 +1,8 @@
 //! Disputed behaviours that the reference profiles (`sst1_board::Reference`) brought in,
 //! one register program per switch, run once per choice (continuing `disputes2.rs`):
 //! FASTFILL dithering (`FastfillDither`), the iterator origin and the lifetime of the
-//! subpixel correction (`ParamOrigin`), and the blue of RGB332 texels (`Rgb332Blue`).
+//! subpixel correction (`ParamOrigin`), the blue of RGB332 texels (`Rgb332Blue`), and
+//! how the filter bits choose point or bilinear sampling (`FilterSelect`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
 
@@ -14,7 +15,7 @@ use pixelfx::profile::{FastfillDither, ParamOrigin};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
 use sst1_regs::addr;
-use texelfx::{Rgb332Blue, TexelProfile};
+use texelfx::{FilterSelect, Rgb332Blue, TexelProfile};
 
 const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
 
@@ -186,5 +187,65 @@ fn rgb332_blue_dosbox_table() {
     assert_eq!(
         rgb332_program(Rgb332Blue::DosboxTable, 0xae),
         rgb565_truncated(0xb6, 0x6d, 0xa2)
+    );
+}
+
+// --- point or bilinear: FilterSelect ----------------------------------------------------
+
+/// `textureMode`: RGB565 decal with only `tmagfilter` (bit 2) set.
+const DECAL_565_MAG_ONLY: u32 = 10 << 8 | 1 << 2 | 1 << 12 | 1 << 18 | 1 << 21 | 1 << 28;
+
+/// LOD 7 (2 x 2) of an RGB565 texture, texel column 0 red and column 1 green, with
+/// `lodmin` 0 and `lodmax` 7, drawn with dS/dx = 256 texels per pixel: the LOD is
+/// clamped to 7, above `lodmin`, so the pixels are minified. At (4, 4), S = 1024 texels
+/// of LOD 0, texel 8.0 of LOD 7: on a texel edge.
+fn filter_program(filter_select: FilterSelect) -> u16 {
+    let mut p = board(
+        PixelProfile::default(),
+        TexelProfile {
+            filter_select,
+            ..Default::default()
+        },
+    );
+    p.write(addr::FBZ_MODE, BASE);
+    p.write(addr::TEXTURE_MODE, DECAL_565_MAG_ONLY);
+    p.write(addr::T_LOD, 28 << 6);
+    p.write(addr::TEX_BASE_ADDR, 0);
+    for t in 0..2u32 {
+        // Spec 8: LOD in address bits 20:17, T in 16:9, two 16-bit texels per write.
+        p.write(TEX_BASE | 7 << 17 | t << 9, 0x07e0 << 16 | 0xf800);
+    }
+    p.write(addr::FBZ_COLOR_PATH, COLOR_PATH_TEXTURE);
+    for (reg, v) in [
+        (addr::START_S, 0),
+        (addr::D_S_DX, 1 << 26),
+        (addr::D_S_DY, 0),
+        (addr::START_T, 0),
+        (addr::D_T_DX, 0),
+        (addr::D_T_DY, 0),
+    ] {
+        p.write(reg, v);
+    }
+    triangle_fixed(
+        &mut p,
+        &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000),
+    );
+    p.read_pixel(Buffer::Back, 4, 4)
+}
+
+/// `FilterSelect::ByLod` (spec 5.50; MAME, DOSBox Staging; default): minified, so
+/// `tminfilter` (0) rules: point sampling reads texel 8 mod 2 = 0, red.
+#[test]
+fn filter_select_by_lod() {
+    assert_eq!(filter_program(FilterSelect::ByLod), 0xf800);
+}
+
+/// `FilterSelect::EitherBit` (86Box): `tmagfilter` alone turns bilinear on at any LOD;
+/// half a texel back from the edge, texels 1 and 0 weigh 8/16 each: (127, 127, 0).
+#[test]
+fn filter_select_either_bit() {
+    assert_eq!(
+        filter_program(FilterSelect::EitherBit),
+        rgb565_truncated(127, 127, 0)
     );
 }

@@ -25,7 +25,8 @@ use pixelfx::profile::{
     FloatOverflow, LfbWordSwap, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
 };
 use texelfx::{
-    CoordRounding, DecalInvert, LodCalc, LodDither, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
+    CoordRounding, DecalInvert, FilterSelect, LodCalc, LodDither, NccUpdate, PerspDivide,
+    Rgb332Blue, Trilinear,
 };
 
 use crate::AccuracyProfile;
@@ -85,6 +86,7 @@ impl Reference {
                 tx.lod = LodCalc::Mame;
                 tx.lod_dither = LodDither::Matrix4x4;
                 tx.rgb332_blue = Rgb332Blue::Replicated;
+                tx.filter_select = FilterSelect::ByLod;
                 tx.ncc_update = NccUpdate::Immediate;
                 tx.trilinear = Trilinear::Ignored;
                 tx.coord_rounding = CoordRounding::TowardZero;
@@ -115,6 +117,7 @@ impl Reference {
                 tx.lod = LodCalc::Dosbox;
                 tx.lod_dither = LodDither::Matrix4x4;
                 tx.rgb332_blue = Rgb332Blue::DosboxTable;
+                tx.filter_select = FilterSelect::ByLod;
                 tx.ncc_update = NccUpdate::OnTextureRegWrite;
                 tx.trilinear = Trilinear::Ignored;
                 tx.coord_rounding = CoordRounding::Floor;
@@ -146,6 +149,7 @@ impl Reference {
                 tx.lod = LodCalc::Box86;
                 tx.lod_dither = LodDither::Off;
                 tx.rgb332_blue = Rgb332Blue::Replicated;
+                tx.filter_select = FilterSelect::EitherBit;
                 tx.ncc_update = NccUpdate::Immediate;
                 tx.trilinear = Trilinear::Spec;
                 tx.coord_rounding = CoordRounding::Floor;

@@ -123,6 +123,17 @@ pub enum Rgb332Blue {
     DosboxTable,
 }
 
+/// How `textureMode`'s two filter bits choose between point sampling and bilinear.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum FilterSelect {
+    /// Spec 5.50: `tmagfilter` when the LOD is clamped at `lodmin` (magnification),
+    /// `tminfilter` otherwise (MAME, DOSBox Staging).
+    #[default]
+    ByLod,
+    /// 86Box (`voodoo_get_texture`): bilinear whenever either bit is set, at any LOD.
+    EitherBit,
+}
+
 /// When writes to the NCC tables take effect.
 ///
 /// MAME and 86Box (the default) use a table from the next triangle on. DOSBox Staging
@@ -252,6 +263,8 @@ pub struct TexelProfile {
     pub a8: A8Expansion,
     /// RGB332 blue expansion.
     pub rgb332_blue: Rgb332Blue,
+    /// Point or bilinear.
+    pub filter_select: FilterSelect,
     /// When NCC table writes take effect.
     pub ncc_update: NccUpdate,
     /// The trilinear bit.

@@ -16,7 +16,9 @@
 
 use crate::format::{self, Decode};
 use crate::lod::{self, f64_to_i32_x86, pixel_lod, PixelLod};
-use crate::{BilinearPrecision, CoordRounding, LodCalc, LodZeroFrac, PerspDivide, Tmu};
+use crate::{
+    BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodZeroFrac, PerspDivide, Tmu,
+};
 use sst1_regs::{TLod, TextureMode};
 
 /// The result of one texel fetch.
@@ -110,10 +112,10 @@ impl Tmu {
         // UNVERIFIED: an odd-only texture at LOD 8 would read past LOD 8; stay on LOD 8.
         let ilod = ilod.min(8);
 
-        let point = if lod == lodmin {
-            !mode.tmagfilter()
-        } else {
-            !mode.tminfilter()
+        let point = match self.profile.filter_select {
+            FilterSelect::ByLod if lod == lodmin => !mode.tmagfilter(),
+            FilterSelect::ByLod => !mode.tminfilter(),
+            FilterSelect::EitherBit => !mode.tmagfilter() && !mode.tminfilter(),
         };
         let texel = if self.cached {
             if !self.cache.has(ilod) {
