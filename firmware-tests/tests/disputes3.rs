@@ -152,21 +152,24 @@ fn rgb332_program(rgb332_blue: Rgb332Blue, texel: u8) -> u16 {
     p.write(addr::TEX_BASE_ADDR, 0);
     // Spec 8: LOD in address bits 20:17, T in 16:9; four 8-bit texels per write.
     p.write(TEX_BASE | 7 << 17, u32::from(texel));
+    textured_pixel(&mut p, 0)
+}
+
+/// Draws a flat triangle textured from S = T = 0 with `dS/dx` = `dsdx` (14.18) and no
+/// other gradient; returns the pixel at (4, 4).
+fn textured_pixel(p: &mut Emulator, dsdx: u32) -> u16 {
     p.write(addr::FBZ_COLOR_PATH, COLOR_PATH_TEXTURE);
-    for reg in [
-        addr::START_S,
-        addr::D_S_DX,
-        addr::D_S_DY,
-        addr::START_T,
-        addr::D_T_DX,
-        addr::D_T_DY,
+    for (reg, v) in [
+        (addr::START_S, 0),
+        (addr::D_S_DX, dsdx),
+        (addr::D_S_DY, 0),
+        (addr::START_T, 0),
+        (addr::D_T_DX, 0),
+        (addr::D_T_DY, 0),
     ] {
-        p.write(reg, 0);
+        p.write(reg, v);
     }
-    triangle_fixed(
-        &mut p,
-        &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000),
-    );
+    triangle_fixed(p, &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 
@@ -215,22 +218,7 @@ fn filter_program(filter_select: FilterSelect) -> u16 {
         // Spec 8: LOD in address bits 20:17, T in 16:9, two 16-bit texels per write.
         p.write(TEX_BASE | 7 << 17 | t << 9, 0x07e0 << 16 | 0xf800);
     }
-    p.write(addr::FBZ_COLOR_PATH, COLOR_PATH_TEXTURE);
-    for (reg, v) in [
-        (addr::START_S, 0),
-        (addr::D_S_DX, 1 << 26),
-        (addr::D_S_DY, 0),
-        (addr::START_T, 0),
-        (addr::D_T_DX, 0),
-        (addr::D_T_DY, 0),
-    ] {
-        p.write(reg, v);
-    }
-    triangle_fixed(
-        &mut p,
-        &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000),
-    );
-    p.read_pixel(Buffer::Back, 4, 4)
+    textured_pixel(&mut p, 1 << 26)
 }
 
 /// `FilterSelect::ByLod` (spec 5.50; MAME, DOSBox Staging; default): minified, so

@@ -16,20 +16,20 @@
 //! said which one the hardware matches. `AccuracyProfile::default()` remains the single
 //! pipeline we believe closest to the hardware, for running programs.
 
-use pixelfx::blend::{BlendArithmetic, Dither2x2Blend, SaturateOperand};
+use pixelfx::blend::{BlendArithmetic, BlendProfile, Dither2x2Blend, SaturateOperand};
 use pixelfx::fog::{
-    FogBothSources, FogConstantMult, FogDifference, FogIteratedAlpha, FogTableDepth,
+    FogBothSources, FogConstantMult, FogDifference, FogIteratedAlpha, FogProfile, FogTableDepth,
 };
 use pixelfx::profile::{
     AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
     FloatOverflow, LfbWordSwap, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
 };
 use texelfx::{
-    CoordRounding, DecalInvert, FilterSelect, LodCalc, LodDither, NccUpdate, PerspDivide,
-    Rgb332Blue, Trilinear,
+    A8Expansion, BilinearPrecision, CoordRounding, DecalInvert, FilterSelect, LodCalc, LodDither,
+    LodZeroFrac, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
 };
 
-use crate::AccuracyProfile;
+use crate::{AccuracyProfile, PixelProfile, TexelProfile};
 
 /// One of the three reference emulators whose goldens define conformance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -57,107 +57,148 @@ impl Reference {
     }
 
     /// Every switch set to what this emulator does (each switch's documentation names
-    /// who does what). Switches no reference disagrees on keep their defaults.
+    /// who does what). One line per switch, in the order MAME, DOSBox Staging, 86Box; the
+    /// literals name every field, so a new switch cannot be left out.
     pub fn profile(self) -> AccuracyProfile {
-        let mut p = AccuracyProfile::default();
-        let (px, tx) = (&mut p.pixel, &mut p.texel);
-        match self {
-            Reference::Mame => {
-                px.edge_rounding = EdgeRounding::FloorHalfDown;
-                px.wfloat = WFloatEdges::Mame;
-                px.clip_right = ClipRightEdge::Exclusive;
-                px.aux_write = AuxWrite::MaskOnly;
-                px.pattern_row = PatternRow::Screen;
-                px.lfb_word_swap = LfbWordSwap::Always;
-                px.float_overflow = FloatOverflow::Wrap;
-                px.subpixel_z = SubpixelZ::Wrap32;
-                px.param_origin = ParamOrigin::VertexPixel;
-                px.alpha_test_input = AlphaTestInput::Combined;
-                px.dither_2x2 = DitherMatrix2x2::Mame;
-                px.fastfill_dither = FastfillDither::Dithered;
-                px.fog.difference = FogDifference::ClampedToByte;
-                px.fog.iterated_alpha = FogIteratedAlpha::MameLowByte;
-                px.fog.constant_mult = FogConstantMult::FogColor;
-                px.fog.table_depth = FogTableDepth::BiasedWfloat;
-                px.fog.both_sources = FogBothSources::IteratedW;
-                px.blend.arithmetic = BlendArithmetic::Mame;
-                px.blend.saturate = SaturateOperand::Source;
-                px.blend.dither_2x2 = Dither2x2Blend::SameAsArithmetic;
-                tx.lod = LodCalc::Mame;
-                tx.lod_dither = LodDither::Matrix4x4;
-                tx.rgb332_blue = Rgb332Blue::Replicated;
-                tx.filter_select = FilterSelect::ByLod;
-                tx.ncc_update = NccUpdate::Immediate;
-                tx.trilinear = Trilinear::Ignored;
-                tx.coord_rounding = CoordRounding::TowardZero;
-                tx.decal_invert = DecalInvert::Ignored;
-                tx.persp_divide = PerspDivide::Double;
-            }
-            Reference::DosboxStaging => {
-                px.edge_rounding = EdgeRounding::TruncHalfDown;
-                px.wfloat = WFloatEdges::Dosbox;
-                px.clip_right = ClipRightEdge::DropLastColumn;
-                px.aux_write = AuxWrite::MaskOnly;
-                px.pattern_row = PatternRow::Raster;
-                px.lfb_word_swap = LfbWordSwap::Always;
-                px.float_overflow = FloatOverflow::Saturate;
-                px.subpixel_z = SubpixelZ::Wide64;
-                px.param_origin = ParamOrigin::VertexPixel;
-                px.alpha_test_input = AlphaTestInput::AOther;
-                px.dither_2x2 = DitherMatrix2x2::Classic;
-                px.fastfill_dither = FastfillDither::Dithered;
-                px.fog.difference = FogDifference::Signed;
-                px.fog.iterated_alpha = FogIteratedAlpha::Clamped;
-                px.fog.constant_mult = FogConstantMult::FogColor;
-                px.fog.table_depth = FogTableDepth::Wfloat;
-                px.fog.both_sources = FogBothSources::IteratedW;
-                px.blend.arithmetic = BlendArithmetic::Dosbox;
-                px.blend.saturate = SaturateOperand::Source;
-                px.blend.dither_2x2 = Dither2x2Blend::SameAsArithmetic;
-                tx.lod = LodCalc::Dosbox;
-                tx.lod_dither = LodDither::Matrix4x4;
-                tx.rgb332_blue = Rgb332Blue::DosboxTable;
-                tx.filter_select = FilterSelect::ByLod;
-                tx.ncc_update = NccUpdate::OnTextureRegWrite;
-                tx.trilinear = Trilinear::Ignored;
-                tx.coord_rounding = CoordRounding::Floor;
-                tx.decal_invert = DecalInvert::Applied;
-                tx.persp_divide = PerspDivide::DosboxReciprocal;
-            }
-            Reference::Box86 => {
-                // UNVERIFIED: 86Box's W-to-float edges are not modelled as their own
-                // choice; the default stands in for it.
-                px.edge_rounding = EdgeRounding::Box86Fixed;
-                px.clip_right = ClipRightEdge::Exclusive;
-                px.aux_write = AuxWrite::MaskAndDepthOrAlphaPlanes;
-                px.pattern_row = PatternRow::Screen;
-                px.lfb_word_swap = LfbWordSwap::SpecIgnoredFor32Bit;
-                px.float_overflow = FloatOverflow::Indefinite;
-                px.subpixel_z = SubpixelZ::Wrap32;
-                px.param_origin = ParamOrigin::RoundedVertex;
-                px.alpha_test_input = AlphaTestInput::Combined;
-                px.dither_2x2 = DitherMatrix2x2::Classic;
-                px.fastfill_dither = FastfillDither::Truncated;
-                px.fog.difference = FogDifference::Signed;
-                px.fog.iterated_alpha = FogIteratedAlpha::Clamped;
-                px.fog.constant_mult = FogConstantMult::AddToColor;
-                px.fog.table_depth = FogTableDepth::Wfloat;
-                px.fog.both_sources = FogBothSources::IteratedW;
-                px.blend.arithmetic = BlendArithmetic::Exact255;
-                px.blend.saturate = SaturateOperand::Destination;
-                px.blend.dither_2x2 = Dither2x2Blend::SameAsArithmetic;
-                tx.lod = LodCalc::Box86;
-                tx.lod_dither = LodDither::Off;
-                tx.rgb332_blue = Rgb332Blue::Replicated;
-                tx.filter_select = FilterSelect::EitherBit;
-                tx.ncc_update = NccUpdate::Immediate;
-                tx.trilinear = Trilinear::Spec;
-                tx.coord_rounding = CoordRounding::Floor;
-                tx.decal_invert = DecalInvert::Ignored;
-                tx.persp_divide = PerspDivide::Box86;
-            }
+        let r = self;
+        AccuracyProfile {
+            pixel: PixelProfile {
+                edge_rounding: r.pick(
+                    EdgeRounding::FloorHalfDown,
+                    EdgeRounding::TruncHalfDown,
+                    EdgeRounding::Box86Fixed,
+                ),
+                // UNVERIFIED: 86Box's W-to-float conversion is not modelled as its own
+                // choice; DOSBox Staging's stands in for it.
+                wfloat: r.pick(WFloatEdges::Mame, WFloatEdges::Dosbox, WFloatEdges::Dosbox),
+                clip_right: r.pick(
+                    ClipRightEdge::Exclusive,
+                    ClipRightEdge::DropLastColumn,
+                    ClipRightEdge::Exclusive,
+                ),
+                aux_write: r.pick(
+                    AuxWrite::MaskOnly,
+                    AuxWrite::MaskOnly,
+                    AuxWrite::MaskAndDepthOrAlphaPlanes,
+                ),
+                pattern_row: r.pick(PatternRow::Screen, PatternRow::Raster, PatternRow::Screen),
+                lfb_word_swap: r.pick(
+                    LfbWordSwap::Always,
+                    LfbWordSwap::Always,
+                    LfbWordSwap::SpecIgnoredFor32Bit,
+                ),
+                float_overflow: r.pick(
+                    FloatOverflow::Wrap,
+                    FloatOverflow::Saturate,
+                    FloatOverflow::Indefinite,
+                ),
+                subpixel_z: r.pick(SubpixelZ::Wrap32, SubpixelZ::Wide64, SubpixelZ::Wrap32),
+                param_origin: r.pick(
+                    ParamOrigin::VertexPixel,
+                    ParamOrigin::VertexPixel,
+                    ParamOrigin::RoundedVertex,
+                ),
+                alpha_test_input: r.pick(
+                    AlphaTestInput::Combined,
+                    AlphaTestInput::AOther,
+                    AlphaTestInput::Combined,
+                ),
+                dither_2x2: r.pick(
+                    DitherMatrix2x2::Mame,
+                    DitherMatrix2x2::Classic,
+                    DitherMatrix2x2::Classic,
+                ),
+                fastfill_dither: r.pick(
+                    FastfillDither::Dithered,
+                    FastfillDither::Dithered,
+                    FastfillDither::Truncated,
+                ),
+                fog: FogProfile {
+                    difference: r.pick(
+                        FogDifference::ClampedToByte,
+                        FogDifference::Signed,
+                        FogDifference::Signed,
+                    ),
+                    iterated_alpha: r.pick(
+                        FogIteratedAlpha::MameLowByte,
+                        FogIteratedAlpha::Clamped,
+                        FogIteratedAlpha::Clamped,
+                    ),
+                    constant_mult: r.pick(
+                        FogConstantMult::FogColor,
+                        FogConstantMult::FogColor,
+                        FogConstantMult::AddToColor,
+                    ),
+                    table_depth: r.pick(
+                        FogTableDepth::BiasedWfloat,
+                        FogTableDepth::Wfloat,
+                        FogTableDepth::Wfloat,
+                    ),
+                    both_sources: FogBothSources::IteratedW,
+                },
+                blend: BlendProfile {
+                    arithmetic: r.pick(
+                        BlendArithmetic::Mame,
+                        BlendArithmetic::Dosbox,
+                        BlendArithmetic::Exact255,
+                    ),
+                    saturate: r.pick(
+                        SaturateOperand::Source,
+                        SaturateOperand::Source,
+                        SaturateOperand::Destination,
+                    ),
+                    // Each reference's own arithmetic for 2x2-dithered pixels too.
+                    dither_2x2: Dither2x2Blend::SameAsArithmetic,
+                },
+            },
+            texel: TexelProfile {
+                lod: r.pick(LodCalc::Mame, LodCalc::Dosbox, LodCalc::Box86),
+                lod_dither: r.pick(LodDither::Matrix4x4, LodDither::Matrix4x4, LodDither::Off),
+                bilinear: BilinearPrecision::Bits4,
+                a8: A8Expansion::AlphaInRgb,
+                rgb332_blue: r.pick(
+                    Rgb332Blue::Replicated,
+                    Rgb332Blue::DosboxTable,
+                    Rgb332Blue::Replicated,
+                ),
+                filter_select: r.pick(
+                    FilterSelect::ByLod,
+                    FilterSelect::ByLod,
+                    FilterSelect::EitherBit,
+                ),
+                ncc_update: r.pick(
+                    NccUpdate::Immediate,
+                    NccUpdate::OnTextureRegWrite,
+                    NccUpdate::Immediate,
+                ),
+                trilinear: r.pick(Trilinear::Ignored, Trilinear::Ignored, Trilinear::Spec),
+                lod_zerofrac: LodZeroFrac::Ignored,
+                coord_rounding: r.pick(
+                    CoordRounding::TowardZero,
+                    CoordRounding::Floor,
+                    CoordRounding::Floor,
+                ),
+                decal_invert: r.pick(
+                    DecalInvert::Ignored,
+                    DecalInvert::Applied,
+                    DecalInvert::Ignored,
+                ),
+                persp_divide: r.pick(
+                    PerspDivide::Double,
+                    PerspDivide::DosboxReciprocal,
+                    PerspDivide::Box86,
+                ),
+            },
         }
-        p
+    }
+
+    /// The argument that stands for this emulator.
+    fn pick<T>(self, mame: T, dosbox: T, box86: T) -> T {
+        match self {
+            Reference::Mame => mame,
+            Reference::DosboxStaging => dosbox,
+            Reference::Box86 => box86,
+        }
     }
 }
 
