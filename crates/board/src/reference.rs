@@ -25,8 +25,8 @@ use pixelfx::profile::{
     FloatOverflow, LfbWordSwap, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
 };
 use texelfx::{
-    A8Expansion, BilinearPrecision, CoordRounding, DecalInvert, FilterSelect, LodCalc, LodDither,
-    LodZeroFrac, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
+    A8Expansion, BilinearPrecision, CoordRounding, DecalInvert, DetailRule, FilterSelect, LodCalc,
+    LodDither, LodZeroFrac, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
 };
 
 use crate::{AccuracyProfile, PixelProfile, TexelProfile};
@@ -165,6 +165,11 @@ impl Reference {
                     FilterSelect::ByLod,
                     FilterSelect::ByLod,
                     FilterSelect::EitherBit,
+                ),
+                detail: r.pick(
+                    DetailRule::WholeLodsCut8,
+                    DetailRule::WholeLods,
+                    DetailRule::IntegerLod,
                 ),
                 ncc_update: r.pick(
                     NccUpdate::Immediate,

@@ -229,23 +229,48 @@ fn channel(
     }
 }
 
+/// How the detail factor reads `tDetail`'s bias and the LOD (spec 5.52 leaves the units
+/// of `detail_bias` unstated).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum DetailRule {
+    /// DOSBox Staging (`TEXTURE_PIPELINE`): `detail_bias` (bits 13:8, 6-bit signed) in
+    /// whole LODs against the 8.8 LOD; the shifted value clamps to `detail_max`.
+    #[default]
+    WholeLods,
+    /// MAME (`rasterizer_texture::recompute`, `combine_texture`): as `WholeLods`, but the
+    /// shifted value is cut to 8 bits (`u8`) before the clamp.
+    WholeLodsCut8,
+    /// 86Box (`voodoo_tmu_fetch_and_blend`): `detail_bias` unsigned, in whole LODs,
+    /// against the integer LOD: `((bias - LOD) << scale)` clamped to `detail_max`.
+    /// INACCURATE: 86Box multiplies by a negative factor when the LOD exceeds the bias;
+    /// here that gives 0.
+    IntegerLod,
+}
+
 /// The detail factor of spec 5.52 for a LOD in 8.8 fixed point (`tDetail` raw value).
 ///
 /// `detail_factor = min(detail_max, ((detail_bias - LOD) << detail_scale))` in 0.8, zero when
 /// `detail_bias <= LOD`. The spec writes `max`, but a clamp is meant (the field is called
-/// "LOD clamp"). `detail_bias` (bits 13:8) is 6-bit signed in whole LODs, `detail_scale`
-/// (bits 16:14) a left shift, `detail_max` (bits 7:0) 0.8. Source: DOSBox Staging
-/// `TEXTURE_PIPELINE`; MAME computes the same but first truncates the shifted value to
-/// 8 bits, which differs only when it exceeds 255; 86Box uses the integer LOD.
+/// "LOD clamp"). `detail_scale` (bits 16:14) is a left shift, `detail_max` (bits 7:0) 0.8;
+/// [`DetailRule`] says what the bias and the LOD are.
 #[doc(alias = "tDetail")]
-pub fn detail_factor(t_detail: u32, lod: i32) -> u8 {
+pub fn detail_factor(t_detail: u32, lod: i32, rule: DetailRule) -> u8 {
     let detail_max = (t_detail & 0xff) as i32;
-    let bias = ((((t_detail >> 8) & 0x3f) << 26) as i32 >> 26) << 8;
+    let field = (t_detail >> 8) & 0x3f;
+    let signed = ((field << 26) as i32) >> 26;
     let scale = (t_detail >> 14) & 7;
+    let (bias, lod) = match rule {
+        DetailRule::WholeLods | DetailRule::WholeLodsCut8 => (signed << 8, lod),
+        DetailRule::IntegerLod => (field as i32, lod >> 8),
+    };
     if bias <= lod {
         return 0;
     }
-    let v = ((bias - lod) << scale) >> 8;
+    let v = match rule {
+        DetailRule::WholeLods => ((bias - lod) << scale) >> 8,
+        DetailRule::WholeLodsCut8 => (((bias - lod) << scale) >> 8) & 0xff,
+        DetailRule::IntegerLod => (bias - lod) << scale,
+    };
     v.min(detail_max) as u8
 }
 
@@ -438,6 +463,7 @@ mod tests {
 
     #[test]
     fn detail_factor_formula() {
+        let detail_factor = |td, lod| detail_factor(td, lod, DetailRule::WholeLods);
         // max 0xff, bias 4, scale 0: (4.0 - 1.5) << 0 = 2.5 -> 0x280 >> 8 = 2
         let td = 0xff | (4 << 8);
         assert_eq!(detail_factor(td, 0x180), 2);
@@ -452,6 +478,27 @@ mod tests {
         assert_eq!(detail_factor(0xff | (0x3f << 8) | (7 << 14), -0x200), 0x80);
         // large value beyond 8 bits is clamped, not wrapped (DOSBox behaviour)
         assert_eq!(detail_factor(0xff | (31 << 8) | (7 << 14), 0), 0xff);
+    }
+
+    #[test]
+    fn detail_factor_rules() {
+        // bias 8, scale 6, max 0xc0 (tmu2_detail's tDetail 0x188c0) at LOD 1.5.
+        let td = 0xc0 | (8 << 8) | (6 << 14);
+        // Whole LODs: (8.0 - 1.5) * 64 = 416, clamped to 0xc0.
+        assert_eq!(detail_factor(td, 0x180, DetailRule::WholeLods), 0xc0);
+        // MAME's cut to 8 bits: 416 & 0xff = 160, under the clamp.
+        assert_eq!(detail_factor(td, 0x180, DetailRule::WholeLodsCut8), 160);
+        // Both zero from LOD 8.0 up.
+        assert_eq!(detail_factor(td, 0x800, DetailRule::WholeLodsCut8), 0);
+        assert_eq!(detail_factor(td, 0x800, DetailRule::WholeLods), 0);
+        // Integer LOD: (8 - 1) << 6 = 448, clamped to 0xc0; at LOD 7.9, (8 - 7) << 6 = 64.
+        assert_eq!(detail_factor(td, 0x180, DetailRule::IntegerLod), 0xc0);
+        assert_eq!(detail_factor(td, 0x7e6, DetailRule::IntegerLod), 64);
+        // Bias 31, scale 7, LOD 0: (31 << 8 << 7) >> 8 = 3968, cut to 0x80 by MAME, clamped
+        // to 0xff by DOSBox Staging.
+        let big = 0xff | (31 << 8) | (7 << 14);
+        assert_eq!(detail_factor(big, 0, DetailRule::WholeLodsCut8), 0x80);
+        assert_eq!(detail_factor(big, 0, DetailRule::WholeLods), 0xff);
     }
 
     #[test]

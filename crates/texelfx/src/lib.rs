@@ -31,6 +31,7 @@ mod sample;
 use cache::TexelCache;
 use layout::Layout;
 use sample::SpanRecip;
+pub use sst1_chain::DetailRule;
 use sst1_chain::{detail_factor, Factors, TextureCombine};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
@@ -265,6 +266,8 @@ pub struct TexelProfile {
     pub rgb332_blue: Rgb332Blue,
     /// Point or bilinear.
     pub filter_select: FilterSelect,
+    /// The units of `tDetail`'s bias and the LOD of the detail factor.
+    pub detail: DetailRule,
     /// When NCC table writes take effect.
     pub ncc_update: NccUpdate,
     /// The trilinear bit.
@@ -560,7 +563,7 @@ impl Tmu {
             smp.texel
         } else {
             let factors = Factors {
-                detail: detail_factor(self.t_detail, smp.lod),
+                detail: detail_factor(self.t_detail, smp.lod, self.profile.detail),
                 lod_fraction: smp.lod_fraction,
                 odd_lod: self.profile.trilinear == Trilinear::Spec && smp.odd_lod,
             };
