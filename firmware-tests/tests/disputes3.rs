@@ -1,17 +1,19 @@
 //! Disputed behaviours that the reference profiles (`sst1_board::Reference`) brought in,
 //! one register program per switch, run once per choice (continuing `disputes2.rs`):
 //! FASTFILL dithering (`FastfillDither`), the iterator origin and the lifetime of the
-//! subpixel correction (`ParamOrigin`), the blue of RGB332 texels (`Rgb332Blue`), and
-//! how the filter bits choose point or bilinear sampling (`FilterSelect`).
+//! subpixel correction (`ParamOrigin`), the blue of RGB332 texels (`Rgb332Blue`),
+//! how the filter bits choose point or bilinear sampling (`FilterSelect`), what the
+//! local-select override reads when nothing else takes the texel (`OverrideTexel`), and
+//! which byte of Z is `a_local` (`ZAlphaByte`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
 
-use firmware_tests::bits::{color_path, fbz};
+use firmware_tests::bits::{alpha, color_path, fbz};
 use firmware_tests::expect::{dither565, MATRIX_4X4};
 use firmware_tests::{
     fastfill, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
 };
-use pixelfx::profile::{FastfillDither, ParamOrigin};
+use pixelfx::profile::{FastfillDither, OverrideTexel, ParamOrigin, ZAlphaByte};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
 use sst1_regs::addr;
@@ -130,7 +132,8 @@ fn param_origin_rounded_vertex() {
 /// Start of the texture region of the aperture (spec 4).
 const TEX_BASE: u32 = 0x80_0000;
 /// `textureMode` decal: `tc_zero_other` + `tc_add_clocal`, `tca_zero_other` +
-/// `tca_add_alocal` (bits 12, 18, 21, 28); format 0 (RGB332), point sampled.
+/// `tca_add_alocal` (bits 12, 18, 21, 28); format 0 (RGB332), point sampled (OR another
+/// format into bits 11:8).
 const DECAL_RGB332: u32 = 1 << 12 | 1 << 18 | 1 << 21 | 1 << 28;
 /// `fbzColorPath`: colour from the texture, texturing on (bit 27).
 const COLOR_PATH_TEXTURE: u32 = 1 | 1 << 27;
@@ -152,13 +155,14 @@ fn rgb332_program(rgb332_blue: Rgb332Blue, texel: u8) -> u16 {
     p.write(addr::TEX_BASE_ADDR, 0);
     // Spec 8: LOD in address bits 20:17, T in 16:9; four 8-bit texels per write.
     p.write(TEX_BASE | 7 << 17, u32::from(texel));
-    textured_pixel(&mut p, 0)
+    textured_pixel(&mut p, COLOR_PATH_TEXTURE, 0)
 }
 
-/// Draws a flat triangle textured from S = T = 0 with `dS/dx` = `dsdx` (14.18) and no
-/// other gradient; returns the pixel at (4, 4).
-fn textured_pixel(p: &mut Emulator, dsdx: u32) -> u16 {
-    p.write(addr::FBZ_COLOR_PATH, COLOR_PATH_TEXTURE);
+/// Draws a flat triangle (iterated colour `0xff203040`) with `fbzColorPath` = `cp`,
+/// textured from S = T = 0 with `dS/dx` = `dsdx` (14.18) and no other gradient; returns
+/// the pixel at (4, 4).
+fn textured_pixel(p: &mut Emulator, cp: u32, dsdx: u32) -> u16 {
+    p.write(addr::FBZ_COLOR_PATH, cp);
     for (reg, v) in [
         (addr::START_S, 0),
         (addr::D_S_DX, dsdx),
@@ -169,7 +173,7 @@ fn textured_pixel(p: &mut Emulator, dsdx: u32) -> u16 {
     ] {
         p.write(reg, v);
     }
-    triangle_fixed(p, &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000));
+    triangle_fixed(p, &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff20_3040));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 
@@ -218,7 +222,7 @@ fn filter_program(filter_select: FilterSelect) -> u16 {
         // Spec 8: LOD in address bits 20:17, T in 16:9, two 16-bit texels per write.
         p.write(TEX_BASE | 7 << 17 | t << 9, 0x07e0 << 16 | 0xf800);
     }
-    textured_pixel(&mut p, 1 << 26)
+    textured_pixel(&mut p, COLOR_PATH_TEXTURE, 1 << 26)
 }
 
 /// `FilterSelect::ByLod` (spec 5.50; MAME, DOSBox Staging; default): minified, so
@@ -236,4 +240,114 @@ fn filter_select_either_bit() {
         filter_program(FilterSelect::EitherBit),
         rgb565_truncated(127, 127, 0)
     );
+}
+
+// --- the local-select override without other texel use: OverrideTexel -------------------
+
+/// `fbzColorPath`: texturing on, `c_other` = texture but zeroed (`cc_zero_other`), add
+/// `c_local` (bit 14), `cc_localselect_override` (bit 7): the output is `c_local`, which
+/// texture alpha bit 7 makes `color0` (set) or iterated RGB (clear). Nothing else reads the
+/// texel.
+const OVERRIDE_ONLY: u32 = 1 | 1 << 7 | 1 << 8 | 1 << 14 | 1 << 27;
+
+/// An opaque RGB565 texel (alpha 0xff) under [`OVERRIDE_ONLY`], `color0` = 0x80a0c0e0.
+fn override_program(override_texel: OverrideTexel) -> u16 {
+    let mut p = board(
+        PixelProfile {
+            override_texel,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(addr::FBZ_MODE, BASE);
+    p.write(addr::COLOR0, 0x80a0_c0e0);
+    p.write(addr::TEXTURE_MODE, 10 << 8 | DECAL_RGB332);
+    p.write(addr::T_LOD, 28 | 28 << 6);
+    p.write(addr::TEX_BASE_ADDR, 0);
+    p.write(TEX_BASE | 7 << 17, 0xffff_ffff);
+    textured_pixel(&mut p, OVERRIDE_ONLY, 0)
+}
+
+/// `OverrideTexel::Texel` (spec 5.16; DOSBox Staging, 86Box; default): texture alpha
+/// 0xff has bit 7 set, so `c_local` is `color0`.
+#[test]
+fn override_reads_the_texel() {
+    assert_eq!(
+        override_program(OverrideTexel::Texel),
+        rgb565_truncated(0xa0, 0xc0, 0xe0)
+    );
+}
+
+/// `OverrideTexel::ZeroWhenUnused` (MAME): no combine input takes the texel, so the TMUs
+/// are off, alpha reads 0 and `c_local` is the iterated colour.
+#[test]
+fn override_reads_zero_when_the_texel_is_unused() {
+    assert_eq!(
+        override_program(OverrideTexel::ZeroWhenUnused),
+        rgb565_truncated(0x20, 0x30, 0x40)
+    );
+    // Once the colour comes from the texel as well, MAME fetches it: c_other = texel
+    // (not zeroed) plus c_local = color0 saturates to white.
+    let mut p = board(
+        PixelProfile {
+            override_texel: OverrideTexel::ZeroWhenUnused,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(addr::FBZ_MODE, BASE);
+    p.write(addr::COLOR0, 0x80a0_c0e0);
+    p.write(addr::TEXTURE_MODE, 10 << 8 | DECAL_RGB332);
+    p.write(addr::T_LOD, 28 | 28 << 6);
+    p.write(addr::TEX_BASE_ADDR, 0);
+    p.write(TEX_BASE | 7 << 17, 0xffff_ffff);
+    assert_eq!(textured_pixel(&mut p, OVERRIDE_ONLY & !(1 << 8), 0), 0xffff);
+}
+
+// --- a_local from iterated Z: ZAlphaByte -----------------------------------------------
+
+/// `cca_localselect` = iterated Z (bits 6:5 = 2), alpha output = `a_local`
+/// (`cca_zero_other`, bit 17, and `cca_add_clocal`, bit 23); Z = 0x40c0 (start Z
+/// 0x040c0000, 20.12, flat). The alpha test passes alpha above 0x80. Returns the pixel at
+/// (4, 4), `fbiAfuncFail` and `fbiPixelsIn` of the triangle.
+fn z_alpha_program(z_alpha: ZAlphaByte) -> (u16, u32, u32) {
+    let mut p = board(
+        PixelProfile {
+            z_alpha,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(addr::FBZ_MODE, BASE);
+    p.write(addr::FBZ_COLOR_PATH, 2 << 5 | 1 << 17 | 1 << 23);
+    p.write(addr::ALPHA_MODE, alpha::test(4) | alpha::reference(0x80));
+    let t = Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff20_3040);
+    // triangle_fixed writes start Z 0: set Z afterwards and draw again, counting only that.
+    triangle_fixed(&mut p, &t);
+    p.write(addr::START_Z, 0x040c_0000);
+    p.write(addr::NOP_CMD, 1);
+    p.write(addr::TRIANGLE_CMD, t.area_sign());
+    (
+        p.read_pixel(Buffer::Back, 4, 4),
+        p.read(addr::FBI_AFUNC_FAIL),
+        p.read(addr::FBI_PIXELS_IN),
+    )
+}
+
+/// `ZAlphaByte::High` (spec 5.16 Z[27:20]; MAME, 86Box; default): alpha 0x40 fails the
+/// test on every pixel, so the pixel keeps the init's fill (0x101030).
+#[test]
+fn z_alpha_high_byte() {
+    let (pixel, fails, pixels) = z_alpha_program(ZAlphaByte::High);
+    assert_eq!(pixel, rgb565_truncated(0x10, 0x10, 0x30));
+    assert_eq!(fails, pixels);
+    assert_ne!(pixels, 0);
+}
+
+/// `ZAlphaByte::Low` (DOSBox Staging): alpha 0xc0 passes; nothing fails and the pixel is
+/// the iterated colour.
+#[test]
+fn z_alpha_low_byte() {
+    let (pixel, fails, _) = z_alpha_program(ZAlphaByte::Low);
+    assert_eq!((pixel, fails), (rgb565_truncated(0x20, 0x30, 0x40), 0));
 }

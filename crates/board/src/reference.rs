@@ -22,7 +22,8 @@ use pixelfx::fog::{
 };
 use pixelfx::profile::{
     AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
-    FloatOverflow, LfbWordSwap, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
+    FloatOverflow, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
+    ZAlphaByte,
 };
 use texelfx::{
     A8Expansion, BilinearPrecision, CoordRounding, DecalInvert, DetailRule, FilterSelect, LodCalc,
@@ -113,6 +114,12 @@ impl Reference {
                     FastfillDither::Dithered,
                     FastfillDither::Truncated,
                 ),
+                override_texel: r.pick(
+                    OverrideTexel::ZeroWhenUnused,
+                    OverrideTexel::Texel,
+                    OverrideTexel::Texel,
+                ),
+                z_alpha: r.pick(ZAlphaByte::High, ZAlphaByte::Low, ZAlphaByte::High),
                 fog: FogProfile {
                     difference: r.pick(
                         FogDifference::ClampedToByte,

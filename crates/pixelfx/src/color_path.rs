@@ -46,6 +46,20 @@ pub fn select_other(cp: FbzColorPath, i: &Inputs) -> Rgba {
     Rgba { a, ..rgb }
 }
 
+/// Whether the combine units take anything from the texel besides the local-select
+/// override: as `c_other` or `a_other` (not zeroed), or as a blend factor (texture alpha,
+/// or `a_other` when that is the texture's).
+pub fn texel_feeds_equation(cp: FbzColorPath) -> bool {
+    let other_rgb = cp.cc_rgbselect() == RgbSelect::Texture;
+    let other_alpha = cp.cc_aselect() == AlphaSelect::Texture;
+    (other_rgb && !cp.cc_zero_other())
+        || (other_alpha && !cp.cca_zero_other())
+        || cp.cc_mselect() == CcMselect::TextureAlpha
+        || (cp.cc_mselect() == CcMselect::AOther && other_alpha)
+        || cp.cca_mselect() == CcMselect::TextureAlpha
+        || (cp.cca_mselect() == CcMselect::AOther && other_alpha)
+}
+
 /// `c_local` / `a_local` (spec 5.16 bits 4, 6:5, 7).
 #[inline(always)]
 pub fn select_local(cp: FbzColorPath, i: &Inputs) -> Rgba {

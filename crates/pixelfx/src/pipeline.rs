@@ -18,7 +18,7 @@ use sst1_regs::{AlphaMode, FbzColorPath, FbzMode, FogMode, Rgba};
 use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
 use crate::iter::{clamp_colour, clamp_z, wfloat, Iterated};
-use crate::profile::{AuxWrite, ClipRightEdge};
+use crate::profile::{AuxWrite, ClipRightEdge, OverrideTexel, ZAlphaByte};
 use crate::specialize::{value, Known, LIVE};
 use crate::stats::Kill;
 use crate::{alpha_test, blend, depth, fog, stipple};
@@ -47,6 +47,9 @@ pub struct DrawState {
     /// The matrix `fbzMode` bit 11 selects, whether or not dithering is on (the
     /// alpha-blend dither subtraction reads it).
     pub dither_matrix: DitherKind,
+    /// Whether the TMU chain is read for a textured pixel (`false` only with
+    /// `OverrideTexel::ZeroWhenUnused` when the combine units take nothing from it).
+    pub fetch_texel: bool,
 }
 
 impl DrawState {
@@ -70,8 +73,13 @@ impl DrawState {
         } else {
             DitherKind::Off
         };
+        let color_path = FbzColorPath(fbi.reg(addr::FBZ_COLOR_PATH));
+        let fetch_texel = match fbi.profile().override_texel {
+            OverrideTexel::Texel => true,
+            OverrideTexel::ZeroWhenUnused => color_path::texel_feeds_equation(color_path),
+        };
         Self {
-            color_path: FbzColorPath(fbi.reg(addr::FBZ_COLOR_PATH)),
+            color_path,
             mode,
             alpha_mode: AlphaMode(fbi.reg(addr::ALPHA_MODE)),
             fog_mode: FogMode(fbi.reg(addr::FOG_MODE)),
@@ -91,6 +99,7 @@ impl DrawState {
             aux: fbi.fb.aux_base(),
             dither,
             dither_matrix,
+            fetch_texel,
         }
     }
 }
@@ -189,7 +198,7 @@ impl Fbi {
         }
 
         // --- colour selection ---
-        let texel = if color_path.texture_enable() {
+        let texel = if color_path.texture_enable() && st.fetch_texel {
             texel()
         } else {
             Rgba::default()
@@ -211,7 +220,10 @@ impl Fbi {
             // Z[27:20], the high byte of the clamped 16-bit Z (spec 5.16; MAME, 86Box).
             // DOSBox Staging takes the low byte; `color_combine` shows MAME and 86Box agree
             // against it.
-            z_alpha: (z16 >> 8) as u8,
+            z_alpha: match self.profile().z_alpha {
+                ZAlphaByte::High => (z16 >> 8) as u8,
+                ZAlphaByte::Low => z16 as u8,
+            },
         };
         let other = match source {
             Source::Triangle => color_path::select_other(color_path, &inputs),

@@ -77,6 +77,32 @@ pub enum FastfillDither {
     Truncated,
 }
 
+/// What `cc_localselect_override` (`fbzColorPath` bit 7) reads when the colour path
+/// uses the texel for nothing else.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum OverrideTexel {
+    /// The TMU chain's output, whatever else uses it (spec 5.16; DOSBox Staging, 86Box).
+    #[default]
+    Texel,
+    /// MAME: its rasterizer set-up (`rasterizer_params::compute_equations`) turns the TMUs
+    /// off when the colour equation takes nothing from the texel, and does not count the
+    /// override as a use, so the override then reads texture alpha 0 (iterated RGB).
+    /// UNVERIFIED: "takes nothing from the texel" is modelled from the register fields
+    /// ([`crate::color_path::texel_feeds_equation`]); MAME decides on its simplified
+    /// equation, which can drop more.
+    ZeroWhenUnused,
+}
+
+/// Which byte of the clamped 16-bit Z `cca_localselect` = 2 (iterated Z) gives `a_local`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum ZAlphaByte {
+    /// Z[27:20], the high byte (spec 5.16; MAME, 86Box).
+    #[default]
+    High,
+    /// The low byte (DOSBox Staging casts the clamped Z to `uint8_t`).
+    Low,
+}
+
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(default)]
@@ -93,6 +119,8 @@ pub struct PixelProfile {
     pub alpha_test_input: AlphaTestInput,
     pub dither_2x2: DitherMatrix2x2,
     pub fastfill_dither: FastfillDither,
+    pub override_texel: OverrideTexel,
+    pub z_alpha: ZAlphaByte,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,
 }
