@@ -3,8 +3,9 @@
 //! FASTFILL dithering (`FastfillDither`), the iterator origin and the lifetime of the
 //! subpixel correction (`ParamOrigin`), the blue of RGB332 texels (`Rgb332Blue`),
 //! how the filter bits choose point or bilinear sampling (`FilterSelect`), what the
-//! local-select override reads when nothing else takes the texel (`OverrideTexel`), and
-//! which byte of Z is `a_local` (`ZAlphaByte`).
+//! local-select override reads when nothing else takes the texel (`OverrideTexel`),
+//! which byte of Z is `a_local` (`ZAlphaByte`), and the combine shortcuts of 86Box
+//! (`ChainModel`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
 
@@ -17,7 +18,7 @@ use pixelfx::profile::{FastfillDither, OverrideTexel, ParamOrigin, ZAlphaByte};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
 use sst1_regs::addr;
-use texelfx::{FilterSelect, Rgb332Blue, TexelProfile};
+use texelfx::{ChainModel, FilterSelect, Rgb332Blue, TexelProfile};
 
 const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
 
@@ -350,4 +351,37 @@ fn z_alpha_high_byte() {
 fn z_alpha_low_byte() {
     let (pixel, fails, _) = z_alpha_program(ZAlphaByte::Low);
     assert_eq!((pixel, fails), (rgb565_truncated(0x20, 0x30, 0x40), 0));
+}
+
+// --- the texture combine on a one-TMU board: ChainModel ---------------------------------
+
+/// A white RGB565 texel under a `textureMode` whose combine zeroes everything
+/// (`tc_zero_other`, `tca_zero_other`, nothing added) on the default one-TMU board.
+fn chain_program(chain: ChainModel) -> u16 {
+    let mut p = board(
+        PixelProfile::default(),
+        TexelProfile {
+            chain,
+            ..Default::default()
+        },
+    );
+    p.write(addr::FBZ_MODE, BASE);
+    p.write(addr::TEXTURE_MODE, 10 << 8 | 1 << 12 | 1 << 21);
+    p.write(addr::T_LOD, 28 | 28 << 6);
+    p.write(addr::TEX_BASE_ADDR, 0);
+    p.write(TEX_BASE | 7 << 17, 0xffff_ffff);
+    textured_pixel(&mut p, COLOR_PATH_TEXTURE, 0)
+}
+
+/// `ChainModel::Full` (spec 5.50; MAME, DOSBox Staging; default): the combine unit
+/// outputs zero: black.
+#[test]
+fn chain_full_runs_the_combine() {
+    assert_eq!(chain_program(ChainModel::Full), 0x0000);
+}
+
+/// `ChainModel::Box86` (86Box): a single TMU's texel passes with no combine: white.
+#[test]
+fn chain_box86_skips_the_combine_on_one_tmu() {
+    assert_eq!(chain_program(ChainModel::Box86), 0xffff);
 }

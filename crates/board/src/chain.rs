@@ -3,7 +3,7 @@
 
 use pixelfx::TexelSource;
 use sst1_regs::Rgba;
-use texelfx::Tmu;
+use texelfx::{ChainModel, Tmu};
 
 /// The TMUs taking part in a triangle, upstream last.
 pub struct Chain<'a> {
@@ -13,18 +13,47 @@ pub struct Chain<'a> {
 impl TexelSource for Chain<'_> {
     #[inline]
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
-        // Upstream first: the last TMU sees zero, each output feeds the next one down.
-        let mut other = Rgba::default();
-        for t in self.tmus.iter_mut().rev() {
-            other = t.texel(dx, dy, x, y, other);
+        match self.tmus {
+            [t0, rest @ ..] if t0.profile().chain == ChainModel::Box86 => {
+                box86_texel(t0, rest.first_mut(), dx, dy, x, y)
+            }
+            _ => {
+                // Upstream first: the last TMU sees zero, each output feeds the next down.
+                let mut other = Rgba::default();
+                for t in self.tmus.iter_mut().rev() {
+                    other = t.texel(dx, dy, x, y, other);
+                }
+                other
+            }
         }
-        other
     }
 
     #[inline]
     fn begin_span(&mut self, dx: i32, dy: i32, len: usize) {
         for t in self.tmus.iter_mut() {
             t.begin_span(dx, dy, len);
+        }
+    }
+}
+
+/// `textureMode` bits 86Box compares to spot TMU 0's local decal, and that pattern
+/// (`TEXTUREMODE_LOCAL_MASK`, `TEXTUREMODE_LOCAL`).
+const BOX86_LOCAL_MASK: u32 = 0x0064_3000;
+const BOX86_LOCAL: u32 = 0x0024_1000;
+/// The combine bits of `textureMode` (`TEXTUREMODE_MASK`); all zero is a pass-through.
+const BOX86_COMBINE_MASK: u32 = 0x3fff_f000;
+
+/// [`ChainModel::Box86`]: TMU 0 and, if present, TMU 1 (a third TMU is not read).
+/// Source: 86Box `voodoo_half_triangle` (the choice between the three paths).
+fn box86_texel(t0: &mut Tmu, t1: Option<&mut Tmu>, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
+    let mode = t0.texture_mode();
+    match t1 {
+        None => t0.texel_uncombined(dx, dy, x, y),
+        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => t0.texel_uncombined(dx, dy, x, y),
+        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => t1.texel_uncombined(dx, dy, x, y),
+        Some(t1) => {
+            let other = t1.texel_box86_upstream(dx, dy, x, y, mode);
+            t0.texel(dx, dy, x, y, other)
         }
     }
 }

@@ -26,8 +26,8 @@ use pixelfx::profile::{
     ZAlphaByte,
 };
 use texelfx::{
-    A8Expansion, BilinearPrecision, CoordRounding, DecalInvert, DetailRule, FilterSelect, LodCalc,
-    LodDither, LodZeroFrac, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
+    A8Expansion, BilinearPrecision, ChainModel, CoordRounding, DecalInvert, DetailRule,
+    FilterSelect, LodCalc, LodDither, LodZeroFrac, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
 };
 
 use crate::{AccuracyProfile, PixelProfile, TexelProfile};
@@ -178,6 +178,7 @@ impl Reference {
                     DetailRule::WholeLods,
                     DetailRule::IntegerLod,
                 ),
+                chain: r.pick(ChainModel::Full, ChainModel::Full, ChainModel::Box86),
                 ncc_update: r.pick(
                     NccUpdate::Immediate,
                     NccUpdate::OnTextureRegWrite,

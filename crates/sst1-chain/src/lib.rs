@@ -169,6 +169,53 @@ impl TextureCombine {
             && matches!(alpha.add, AddLocal::ALocal)
     }
 
+    /// 86Box's combine for the upstream TMU of two (`voodoo_tmu_fetch_and_blend`, TMU 1):
+    /// a unit runs only if its `sub_clocal` bit is set, as `(-c_local * factor) >> 8`
+    /// plus the add (other taken as zero, `a_other` as a zero factor); otherwise the
+    /// texel's channels pass unchanged. `invert_output` is never applied. The
+    /// `reverse_blend` bits are `downstream`'s (TMU 0's: 86Box reads them through TMU 0's
+    /// macros), and the alpha unit tests them the other way round from the colour unit.
+    pub fn combine_box86_upstream(
+        &self,
+        local: [u8; 4],
+        f: &Factors,
+        downstream: &TextureCombine,
+    ) -> [u8; 4] {
+        let odd = self.trilinear && f.odd_lod;
+        let mut out = local;
+        for (ch, slot) in out.iter_mut().enumerate() {
+            let alpha = ch == A;
+            let u = if alpha { &self.alpha } else { &self.rgb };
+            if !u.sub_clocal {
+                continue;
+            }
+            let c_local = i32::from(local[ch]);
+            let a_local = i32::from(local[A]);
+            let factor = match u.mselect {
+                MSelect::Zero | MSelect::Reserved | MSelect::AOther => 0,
+                MSelect::CLocal if alpha => a_local,
+                MSelect::CLocal => c_local,
+                MSelect::ALocal => a_local,
+                MSelect::DetailFactor => i32::from(f.detail),
+                MSelect::LodFraction => i32::from(f.lod_fraction),
+            };
+            let plain = if alpha {
+                downstream.alpha.reverse_blend == odd
+            } else {
+                downstream.rgb.reverse_blend != odd
+            };
+            let factor = if plain { factor } else { factor ^ 0xff };
+            let mut v = (-c_local * (factor + 1)) >> 8;
+            v += match (alpha, u.add) {
+                (_, AddLocal::None) => 0,
+                (true, _) | (false, AddLocal::ALocal) => a_local,
+                (false, AddLocal::CLocal) => c_local,
+            };
+            *slot = v.clamp(0, 255) as u8;
+        }
+        out
+    }
+
     /// Combines `local` (this TMU's texel) with `other` (the upstream TMU's output).
     pub fn combine(&self, local: [u8; 4], other: [u8; 4], f: &Factors) -> [u8; 4] {
         let odd = self.trilinear && f.odd_lod;
@@ -478,6 +525,32 @@ mod tests {
         assert_eq!(detail_factor(0xff | (0x3f << 8) | (7 << 14), -0x200), 0x80);
         // large value beyond 8 bits is clamped, not wrapped (DOSBox behaviour)
         assert_eq!(detail_factor(0xff | (31 << 8) | (7 << 14), 0), 0xff);
+    }
+
+    #[test]
+    fn box86_upstream_combine() {
+        let f = F0;
+        let local = [0x40, 0x80, 0xc0, 0x60];
+        let plain = TextureCombine::from_texture_mode(0);
+        // Without sub_clocal a unit passes the texel, whatever else it says (here zero
+        // other, add a_local, invert).
+        let tmu1 = TextureCombine::from_texture_mode(both(ZERO_OTHER | ADD_ALOCAL | INVERT));
+        assert_eq!(tmu1.combine_box86_upstream(local, &f, &plain), local);
+        // sub_clocal, factor a_local (0x60), add c_local; TMU 0 without reverse_blend:
+        // colour complements the factor, alpha (tested the other way) does not.
+        let mode = both(SUB_CLOCAL | msel(3) | ADD_CLOCAL);
+        let tmu1 = TextureCombine::from_texture_mode(mode);
+        let e = |c: i32, k: i32| (((-c * (k + 1)) >> 8) + c) as u8;
+        assert_eq!(
+            tmu1.combine_box86_upstream(local, &f, &plain),
+            [e(0x40, 0x9f), e(0x80, 0x9f), e(0xc0, 0x9f), e(0x60, 0x60)]
+        );
+        // TMU 0 with both reverse_blend bits set swaps them.
+        let reversed = TextureCombine::from_texture_mode(both(REVERSE));
+        assert_eq!(
+            tmu1.combine_box86_upstream(local, &f, &reversed),
+            [e(0x40, 0x60), e(0x80, 0x60), e(0xc0, 0x60), e(0x60, 0x9f)]
+        );
     }
 
     #[test]

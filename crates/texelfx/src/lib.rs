@@ -135,6 +135,22 @@ pub enum FilterSelect {
     EitherBit,
 }
 
+/// How the TMUs of the chain combine their texels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum ChainModel {
+    /// Every TMU runs its texture combine unit on its texel and the upstream output
+    /// (spec 3.2, 5.50; MAME, DOSBox Staging).
+    #[default]
+    Full,
+    /// 86Box's shortcuts (`voodoo_half_triangle`, `voodoo_tmu_fetch_and_blend`): with one
+    /// TMU the texel passes with no combine at all; with two, TMU 0's texel alone when its
+    /// mode is the local decal (`textureMode & 0x00643000 == 0x00241000`), TMU 1's texel
+    /// alone when TMU 0's combine bits are all zero, else TMU 1 through
+    /// [`sst1_chain::TextureCombine::combine_box86_upstream`] and TMU 0's full combine. A
+    /// third TMU is not read.
+    Box86,
+}
+
 /// When writes to the NCC tables take effect.
 ///
 /// MAME and 86Box (the default) use a table from the next triangle on. DOSBox Staging
@@ -268,6 +284,8 @@ pub struct TexelProfile {
     pub filter_select: FilterSelect,
     /// The units of `tDetail`'s bias and the LOD of the detail factor.
     pub detail: DetailRule,
+    /// How the TMU chain combines (read from TMU 0's profile by the board).
+    pub chain: ChainModel,
     /// When NCC table writes take effect.
     pub ncc_update: NccUpdate,
     /// The trilinear bit.
@@ -280,6 +298,17 @@ pub struct TexelProfile {
     pub decal_invert: DecalInvert,
     /// The perspective divide.
     pub persp_divide: PerspDivide,
+}
+
+/// What [`Tmu::output`] returns.
+#[derive(Clone, Copy)]
+enum Output {
+    /// The combine unit's output with this upstream colour.
+    Combined(Rgba),
+    /// The filtered texel alone.
+    Texel,
+    /// 86Box's upstream-TMU combine, with the downstream TMU's `textureMode`.
+    Box86Upstream(u32),
 }
 
 /// One texture mapping unit: its registers, texture memory, NCC tables and palette.
@@ -553,24 +582,58 @@ impl Tmu {
     /// position (LOD dither); `other`: the upstream TMU's output (black and transparent for
     /// the last TMU of the chain).
     pub fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32, other: Rgba) -> Rgba {
+        self.output(dx, dy, x, y, Output::Combined(other))
+    }
+
+    /// The filtered texel for one pixel, without the combine unit ([`ChainModel::Box86`]).
+    pub fn texel_uncombined(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
+        self.output(dx, dy, x, y, Output::Texel)
+    }
+
+    /// The upstream TMU's output under [`ChainModel::Box86`], with the downstream TMU's
+    /// `textureMode` (whose `reverse_blend` bits 86Box applies here).
+    pub fn texel_box86_upstream(
+        &mut self,
+        dx: i32,
+        dy: i32,
+        x: i32,
+        y: i32,
+        downstream_mode: u32,
+    ) -> Rgba {
+        self.output(dx, dy, x, y, Output::Box86Upstream(downstream_mode))
+    }
+
+    fn output(&mut self, dx: i32, dy: i32, x: i32, y: i32, what: Output) -> Rgba {
         if self.lut_stale {
             self.rebuild_lut();
         }
         let at = |i| self.iterated(i, dx, dy);
         let span = self.span.get(dx, dy);
         let smp = self.sample(at(0), at(1), at(2), x, y, span);
-        let [r, g, b, a] = if self.passthrough {
-            smp.texel
-        } else {
-            let factors = Factors {
-                detail: detail_factor(self.t_detail, smp.lod, self.profile.detail),
-                lod_fraction: smp.lod_fraction,
-                odd_lod: self.profile.trilinear == Trilinear::Spec && smp.odd_lod,
-            };
-            self.combine
-                .combine(smp.texel, [other.r, other.g, other.b, other.a], &factors)
+        let factors = || Factors {
+            detail: detail_factor(self.t_detail, smp.lod, self.profile.detail),
+            lod_fraction: smp.lod_fraction,
+            odd_lod: self.profile.trilinear == Trilinear::Spec && smp.odd_lod,
+        };
+        let [r, g, b, a] = match what {
+            Output::Texel => smp.texel,
+            Output::Combined(_) if self.passthrough => smp.texel,
+            Output::Combined(o) => {
+                self.combine
+                    .combine(smp.texel, [o.r, o.g, o.b, o.a], &factors())
+            }
+            Output::Box86Upstream(mode) => self.combine.combine_box86_upstream(
+                smp.texel,
+                &factors(),
+                &TextureCombine::from_texture_mode(mode),
+            ),
         };
         Rgba { r, g, b, a }
+    }
+
+    /// The raw `textureMode` register.
+    pub fn texture_mode(&self) -> u32 {
+        self.texture_mode
     }
 
     /// Iterator `i` (0 S, 1 T, 2 W; .32) at pixel offset `(dx, dy)` from vertex A:
