@@ -4,7 +4,8 @@
 //! subpixel correction (`ParamOrigin`), the blue of RGB332 texels (`Rgb332Blue`),
 //! how the filter bits choose point or bilinear sampling (`FilterSelect`), what the
 //! local-select override reads when nothing else takes the texel (`OverrideTexel`),
-//! which byte of Z is `a_local` (`ZAlphaByte`), and the combine shortcuts of 86Box
+//! which byte of Z is `a_local` (`ZAlphaByte`), the stipple rotation (`StippleRotate`),
+//! and the combine shortcuts of 86Box
 //! (`ChainModel`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
@@ -14,7 +15,7 @@ use firmware_tests::expect::{dither565, MATRIX_4X4};
 use firmware_tests::{
     fastfill, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
 };
-use pixelfx::profile::{FastfillDither, OverrideTexel, ParamOrigin, ZAlphaByte};
+use pixelfx::profile::{FastfillDither, OverrideTexel, ParamOrigin, StippleRotate, ZAlphaByte};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
 use sst1_regs::addr;
@@ -384,4 +385,53 @@ fn chain_full_runs_the_combine() {
 #[test]
 fn chain_box86_skips_the_combine_on_one_tmu() {
     assert_eq!(chain_program(ChainModel::Box86), 0xffff);
+}
+
+// --- stipple rotate mode: StippleRotate -------------------------------------------------
+
+/// Rotate-mode stipple (`fbzMode` bit 2, bit 12 clear) with only bit 30 set, on a flat
+/// triangle (0, 0), (40, 0), (0, 40) walked left to right. Returns pixels 0..4 of row 2
+/// (drawn: the triangle's colour; not drawn: the init's fill) and `fbiPixelsOut`.
+fn stipple_program(stipple_rotate: StippleRotate) -> ([u16; 4], u32) {
+    let mut p = board(
+        PixelProfile {
+            stipple_rotate,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(addr::FBZ_MODE, BASE | 1 << 2);
+    p.write(addr::STIPPLE, 1 << 30);
+    p.write(addr::NOP_CMD, 1);
+    triangle_fixed(
+        &mut p,
+        &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff20_3040),
+    );
+    (
+        std::array::from_fn(|x| p.read_pixel(Buffer::Back, x as u32, 2)),
+        p.read(addr::FBI_PIXELS_OUT),
+    )
+}
+
+const DRAWN: u16 = rgb565_truncated(0x20, 0x30, 0x40);
+const FILL: u16 = rgb565_truncated(0x10, 0x10, 0x30);
+
+/// `StippleRotate::PerScanline` (MAME, DOSBox Staging; default): each row starts from
+/// the register, so bit 30 reaches bit 31 at the first pixel of every row and 32 pixels
+/// later: row `y` is `39 - y` pixels wide (rows 0..=38), so 39 first pixels plus the 33rd
+/// pixel of the 7 rows at least 33 wide.
+#[test]
+fn stipple_rotates_per_scanline() {
+    let (row, out) = stipple_program(StippleRotate::PerScanline);
+    assert_eq!(row, [DRAWN, FILL, FILL, FILL]);
+    assert_eq!(out, 39 + 7);
+}
+
+/// `StippleRotate::PerTriangle` (86Box): the first pixel sets bit 31 and its
+/// sign-extending shift fills the copy with ones: every pixel of the triangle is drawn.
+#[test]
+fn stipple_rotates_per_triangle() {
+    let (row, out) = stipple_program(StippleRotate::PerTriangle);
+    assert_eq!(row, [DRAWN; 4]);
+    assert_eq!(out, (1..=39).sum::<u32>());
 }

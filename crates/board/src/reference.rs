@@ -22,8 +22,8 @@ use pixelfx::fog::{
 };
 use pixelfx::profile::{
     AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
-    FloatOverflow, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow, SubpixelZ, WFloatEdges,
-    ZAlphaByte,
+    FloatOverflow, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow, StippleRotate, SubpixelZ,
+    WFloatEdges, ZAlphaByte,
 };
 use texelfx::{
     A8Expansion, BilinearPrecision, ChainModel, CoordRounding, DecalInvert, DetailRule,
@@ -120,6 +120,11 @@ impl Reference {
                     OverrideTexel::Texel,
                 ),
                 z_alpha: r.pick(ZAlphaByte::High, ZAlphaByte::Low, ZAlphaByte::High),
+                stipple_rotate: r.pick(
+                    StippleRotate::PerScanline,
+                    StippleRotate::PerScanline,
+                    StippleRotate::PerTriangle,
+                ),
                 fog: FogProfile {
                     difference: r.pick(
                         FogDifference::ClampedToByte,

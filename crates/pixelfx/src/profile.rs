@@ -103,6 +103,19 @@ pub enum ZAlphaByte {
     Low,
 }
 
+/// What the stipple register's rotate mode (`fbzMode` bit 12 clear) rotates across.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum StippleRotate {
+    /// A copy of the register reloaded for every scanline (MAME, DOSBox Staging).
+    #[default]
+    PerScanline,
+    /// 86Box (`voodoo_half_triangle`): one copy for the whole triangle, stepped for every
+    /// pixel in walk order (right to left for a triangle whose `triangleCMD` bit 31 is
+    /// set) by `(s << 1) | (s >> 31)` on a signed `int`, whose arithmetic shift fills the
+    /// copy with ones once bit 31 has been set: every later pixel of the triangle passes.
+    PerTriangle,
+}
+
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(default)]
@@ -121,6 +134,7 @@ pub struct PixelProfile {
     pub fastfill_dither: FastfillDither,
     pub override_texel: OverrideTexel,
     pub z_alpha: ZAlphaByte,
+    pub stipple_rotate: StippleRotate,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,
 }

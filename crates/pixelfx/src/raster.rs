@@ -6,8 +6,9 @@ use sst1_regs::{FbzMode, Rgba};
 use crate::fbi::Fbi;
 use crate::iter::Iterated;
 use crate::pipeline::{DrawState, Source};
-use crate::setup;
+use crate::profile::StippleRotate;
 use crate::specialize::{self, value, Known, RasterKey, LIVE};
+use crate::{setup, stipple};
 
 /// What the TMU chain gives the FBI for one pixel.
 pub trait TexelSource {
@@ -94,7 +95,12 @@ impl Fbi {
         let origin = self.profile().param_origin;
         let (ax, ay) = (origin.pixel(self.params.ax), origin.pixel(self.params.ay));
         let params = self.params;
-        for span in setup::spans(&params, self.profile().edge_rounding) {
+        let profile = self.profile();
+        let per_triangle = profile.stipple_rotate == StippleRotate::PerTriangle;
+        // StippleRotate::PerTriangle: the triangle's copy, and each row's values.
+        let mut carried = st.stipple;
+        let mut row_stipple: Vec<u32> = Vec::new();
+        for span in setup::spans(&params, profile.edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);
             // Every pixel the walker visits counts as "in" (spec 5.31), clipped or not.
             self.stats.pixels_in += (stop - start) as u64;
@@ -115,7 +121,23 @@ impl Fbi {
             let mut stipple = st.stipple;
             let prow = self.pattern_row(span.y, scry);
             tex.begin_span(start - ax, dy, (stop - start) as usize);
+            if per_triangle {
+                // Each pixel's stepped copy, in walk order (right to left when
+                // triangleCMD bit 31 says so), rotated back by one because the stipple
+                // test rotates the value it is given left by one before testing bit 31.
+                row_stipple.clear();
+                for _ in start..stop {
+                    carried = stipple::box86_step(carried);
+                    row_stipple.push(carried.rotate_right(1));
+                }
+                if params.right_to_left {
+                    row_stipple.reverse();
+                }
+            }
             for x in start..stop {
+                if per_triangle {
+                    stipple = row_stipple[(x - start) as usize];
+                }
                 let r = self.shade::<CP, AM, FM, ZM>(
                     st,
                     x,
