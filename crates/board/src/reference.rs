@@ -27,7 +27,8 @@ use pixelfx::profile::{
 };
 use texelfx::{
     A8Expansion, BilinearPrecision, ChainModel, CoordRounding, DecalInvert, DetailRule,
-    FilterSelect, LodCalc, LodDither, LodZeroFrac, NccUpdate, PerspDivide, Rgb332Blue, Trilinear,
+    FilterSelect, LodCalc, LodDither, LodZeroFrac, NccQ2Write, NccUpdate, PerspDivide, Rgb332Blue,
+    Trilinear,
 };
 
 use crate::{AccuracyProfile, PixelProfile, TexelProfile};
@@ -184,6 +185,7 @@ impl Reference {
                     DetailRule::IntegerLod,
                 ),
                 chain: r.pick(ChainModel::Full, ChainModel::Full, ChainModel::Box86),
+                ncc_q2: r.pick(NccQ2Write::Q2, NccQ2Write::Q2, NccQ2Write::IntoI2),
                 ncc_update: r.pick(
                     NccUpdate::Immediate,
                     NccUpdate::OnTextureRegWrite,

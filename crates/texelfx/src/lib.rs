@@ -151,6 +151,17 @@ pub enum ChainModel {
     Box86,
 }
 
+/// Where a write to `nccTable0` Q2 lands.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum NccQ2Write {
+    /// Table 0's Q2 (spec 5.56; MAME, DOSBox Staging).
+    #[default]
+    Q2,
+    /// Table 0's I2, leaving Q2 as it was (86Box `voodoo_reg_writel`: the
+    /// `SST_nccTable0_Q2` case stores into `i[2]`).
+    IntoI2,
+}
+
 /// When writes to the NCC tables take effect.
 ///
 /// MAME and 86Box (the default) use a table from the next triangle on. DOSBox Staging
@@ -284,6 +295,8 @@ pub struct TexelProfile {
     pub filter_select: FilterSelect,
     /// The units of `tDetail`'s bias and the LOD of the detail factor.
     pub detail: DetailRule,
+    /// Where `nccTable0` Q2 writes land.
+    pub ncc_q2: NccQ2Write,
     /// How the TMU chain combines (read from TMU 0's profile by the board).
     pub chain: ChainModel,
     /// When NCC table writes take effect.
@@ -675,6 +688,11 @@ impl Tmu {
     fn write_ncc(&mut self, table: usize, word: usize, value: u32) {
         match sst1_ncc::classify_write(table, word, value) {
             NccWrite::Table { table, word, value } => {
+                // Words 0..4 are Y, 4..8 I, 8..12 Q: table 0's Q2 is word 10, I2 word 6.
+                let word = match (self.profile.ncc_q2, table, word) {
+                    (NccQ2Write::IntoI2, 0, 10) => 6,
+                    _ => word,
+                };
                 self.ncc_regs[table][word] = value;
                 match self.profile.ncc_update {
                     NccUpdate::Immediate => {

@@ -759,3 +759,23 @@ fn persp_divide_box86_profile() {
     });
     assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN);
 }
+
+/// `NccQ2Write`: table 0's Q2 (register word 10) lands in Q2, or in I2 as 86Box stores it.
+#[test]
+fn ncc_table0_q2_write_target() {
+    let q2 = addr::NCC_TABLE0 + 10 * 4;
+    for (choice, word) in [(NccQ2Write::Q2, 10), (NccQ2Write::IntoI2, 6)] {
+        let mut tmu = Tmu::new(0, 1 << 20);
+        tmu.set_profile(TexelProfile {
+            ncc_q2: choice,
+            ..Default::default()
+        });
+        tmu.write_reg(q2, 0x0123_4567);
+        let mut expected = [0u32; 12];
+        expected[word] = 0x0123_4567;
+        assert_eq!(tmu.ncc_regs[0], expected, "{choice:?}");
+        // Table 1's Q2 is never redirected.
+        tmu.write_reg(addr::NCC_TABLE1 + 10 * 4, 0x89);
+        assert_eq!(tmu.ncc_regs[1][10], 0x89, "{choice:?}");
+    }
+}
