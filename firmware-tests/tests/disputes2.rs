@@ -282,8 +282,7 @@ fn word_swap_program(lfb_word_swap: LfbWordSwap) -> [u16; 3] {
     [(10, 10), (20, 10), (21, 10)].map(|(x, y)| p.read_pixel(Buffer::Back, x, y))
 }
 
-/// `LfbWordSwap::SpecIgnoredFor32Bit` (spec 5.20, twice; 86Box, which has no word swap;
-/// default): the ARGB8888 word is taken as written, RGB (0xf8, 0x80, 0x08); the 565 pair
+/// `LfbWordSwap::SpecIgnoredFor32Bit` (spec 5.20, twice; default): the ARGB8888 word is taken as written, RGB (0xf8, 0x80, 0x08); the 565 pair
 /// is swapped: blue (0x001f) at x = 20, red at 21. A board showing (0xf8, 0x80, 0x08)
 /// at (10, 10) supports this choice.
 #[test]
@@ -301,6 +300,16 @@ fn lfb_word_swap_always() {
     assert_eq!(
         word_swap_program(LfbWordSwap::Always),
         [rgb565_truncated(0x08, 0x00, 0xf8), 0x001f, 0xf800]
+    );
+}
+
+/// `LfbWordSwap::Never` (86Box, which has no word swap): neither word is swapped, so the
+/// 565 pair lands red at x = 20, blue at 21.
+#[test]
+fn lfb_word_swap_never() {
+    assert_eq!(
+        word_swap_program(LfbWordSwap::Never),
+        [rgb565_truncated(0xf8, 0x80, 0x08), 0xf800, 0x001f]
     );
 }
 

@@ -5,17 +5,19 @@
 //! how the filter bits choose point or bilinear sampling (`FilterSelect`), what the
 //! local-select override reads when nothing else takes the texel (`OverrideTexel`),
 //! which byte of Z is `a_local` (`ZAlphaByte`), the stipple rotation (`StippleRotate`),
-//! and the combine shortcuts of 86Box
+//! the LFB ordering bits (`LfbOrdering`) and the combine shortcuts of 86Box
 //! (`ChainModel`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
 
-use firmware_tests::bits::{alpha, color_path, fbz};
+use firmware_tests::bits::{alpha, color_path, fbz, lfb};
 use firmware_tests::expect::{dither565, MATRIX_4X4};
 use firmware_tests::{
-    fastfill, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
+    fastfill, lfb32, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
 };
-use pixelfx::profile::{FastfillDither, OverrideTexel, ParamOrigin, StippleRotate, ZAlphaByte};
+use pixelfx::profile::{
+    FastfillDither, LfbOrdering, OverrideTexel, ParamOrigin, StippleRotate, ZAlphaByte,
+};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
 use sst1_regs::addr;
@@ -434,4 +436,59 @@ fn stipple_rotates_per_triangle() {
     let (row, out) = stipple_program(StippleRotate::PerTriangle);
     assert_eq!(row, [DRAWN; 4]);
     assert_eq!(out, (1..=39).sum::<u32>());
+}
+
+// --- LFB lanes, byte swizzle and Y origin: LfbOrdering ----------------------------------
+
+/// Two LFB writes in ARGB8888 (format 4) straight to the back buffer: (0x10, 0x80, 0xf0)
+/// at (4, 4) with the ABGR lane order (bits 10:9 = 1), then the same word at (6, 0) with
+/// `lfbMode`'s Y origin at the bottom (bit 13). Returns the pixel at (4, 4), and rows 0
+/// and 479 at x = 6.
+fn lfb_ordering_program(lfb_ordering: LfbOrdering) -> [u16; 3] {
+    let mut p = board(
+        PixelProfile {
+            lfb_ordering,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(
+        addr::LFB_MODE,
+        lfb::format(4) | lfb::WRITE_BACK | lfb::lanes(1),
+    );
+    p.write(lfb32(4, 4), 0x0010_80f0);
+    p.write(
+        addr::LFB_MODE,
+        lfb::format(4) | lfb::WRITE_BACK | lfb::Y_ORIGIN,
+    );
+    p.write(lfb32(6, 0), 0x0010_80f0);
+    [(4, 4), (6, 0), (6, 479)].map(|(x, y)| p.read_pixel(Buffer::Back, x, y))
+}
+
+/// `LfbOrdering::Applied` (spec 5.20; MAME, DOSBox Staging; default): the ABGR word reads
+/// blue 0x10, red 0xf0; the flipped write lands on row 479 (the init's swap value).
+#[test]
+fn lfb_ordering_applied() {
+    assert_eq!(
+        lfb_ordering_program(LfbOrdering::Applied),
+        [
+            rgb565_truncated(0xf0, 0x80, 0x10),
+            rgb565_truncated(0x10, 0x10, 0x30),
+            rgb565_truncated(0x10, 0x80, 0xf0)
+        ]
+    );
+}
+
+/// `LfbOrdering::Ignored` (86Box): the word is ARGB whatever the lanes say, and row 0 is
+/// row 0.
+#[test]
+fn lfb_ordering_ignored() {
+    assert_eq!(
+        lfb_ordering_program(LfbOrdering::Ignored),
+        [
+            rgb565_truncated(0x10, 0x80, 0xf0),
+            rgb565_truncated(0x10, 0x80, 0xf0),
+            rgb565_truncated(0x10, 0x10, 0x30)
+        ]
+    );
 }

@@ -22,8 +22,8 @@ use pixelfx::fog::{
 };
 use pixelfx::profile::{
     AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
-    FloatOverflow, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow, StippleRotate, SubpixelZ,
-    WFloatEdges, ZAlphaByte,
+    FloatOverflow, LfbOrdering, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow, StippleRotate,
+    SubpixelZ, WFloatEdges, ZAlphaByte,
 };
 use texelfx::{
     A8Expansion, BilinearPrecision, ChainModel, CoordRounding, DecalInvert, DetailRule,
@@ -84,10 +84,11 @@ impl Reference {
                     AuxWrite::MaskAndDepthOrAlphaPlanes,
                 ),
                 pattern_row: r.pick(PatternRow::Screen, PatternRow::Raster, PatternRow::Screen),
-                lfb_word_swap: r.pick(
-                    LfbWordSwap::Always,
-                    LfbWordSwap::Always,
-                    LfbWordSwap::SpecIgnoredFor32Bit,
+                lfb_word_swap: r.pick(LfbWordSwap::Always, LfbWordSwap::Always, LfbWordSwap::Never),
+                lfb_ordering: r.pick(
+                    LfbOrdering::Applied,
+                    LfbOrdering::Applied,
+                    LfbOrdering::Ignored,
                 ),
                 float_overflow: r.pick(
                     FloatOverflow::Wrap,

@@ -13,7 +13,7 @@ use sst1_regs::{addr, ColorBuffer, LfbMode, LfbReadBuffer, Rgba};
 use crate::fbi::Fbi;
 use crate::iter::Iterated;
 use crate::pipeline::{DrawState, Source};
-use crate::profile::LfbWordSwap;
+use crate::profile::{LfbOrdering, LfbWordSwap};
 use crate::stats::Kill;
 
 /// One pixel decoded from an LFB write.
@@ -140,17 +140,26 @@ impl Fbi {
 
     /// A 32-bit write into the LFB region; `offset` is relative to 0x400000.
     pub fn lfb_write(&mut self, offset: u32, data: u32) {
-        let mode = self.lfb_mode();
+        let profile = self.profile();
+        let mut mode = self.lfb_mode();
         let mut data = data;
+        let ordering = profile.lfb_ordering == LfbOrdering::Applied;
+        if !ordering {
+            // ARGB lanes, no byte swizzle, no Y flip.
+            mode = LfbMode(mode.0 & !(3 << 9 | 1 << 12 | 1 << 13));
+        }
         if mode.byte_swizzle_writes() {
             data = data.swap_bytes();
         }
         // Spec 5.20: "bit(11) of lfbMode is ignored for linear frame buffer writes using
         // formats 4 or 5" (the 32-bit colour formats).
         let is_32bit_colour = matches!(mode.0 & 0xf, 4 | 5);
-        let swap_ignored =
-            is_32bit_colour && self.profile().lfb_word_swap == LfbWordSwap::SpecIgnoredFor32Bit;
-        if mode.word_swap_writes() && !swap_ignored {
+        let swap = match profile.lfb_word_swap {
+            LfbWordSwap::SpecIgnoredFor32Bit => !is_32bit_colour,
+            LfbWordSwap::Always => true,
+            LfbWordSwap::Never => false,
+        };
+        if mode.word_swap_writes() && swap {
             data = data.rotate_left(16);
         }
         let Some((count, pixels)) = decode(mode, data) else {
@@ -175,7 +184,7 @@ impl Fbi {
         if mode.enable_pixel_pipeline() {
             let st = DrawState::capture(self, dest);
             // UNVERIFIED: the pipeline path flips with fbzMode's Y origin (DOSBox Staging).
-            let scry = self.screen_y(y, fbz.y_origin());
+            let scry = self.screen_y(y, fbz.y_origin() && ordering);
             let color1 = Rgba::from_argb(self.reg(addr::COLOR1));
             for (i, p) in pixels.iter().take(count).enumerate() {
                 let x = x0 + i as i32;

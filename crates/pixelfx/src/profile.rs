@@ -46,12 +46,26 @@ pub enum PatternRow {
 /// Whether `lfbMode` bit 11 (word swap on writes) applies to the 32-bit colour formats.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum LfbWordSwap {
-    /// Ignored for formats 4 and 5, as spec 5.20 says twice (86Box implements no word
-    /// swap at all, which agrees for these formats). No conformance trace exercises it.
+    /// Ignored for formats 4 and 5, as spec 5.20 says twice. No conformance trace
+    /// exercises it.
     #[default]
     SpecIgnoredFor32Bit,
     /// Swapped for every format (MAME, DOSBox Staging).
     Always,
+    /// Never swapped (86Box implements no word swap: `voodoo_fb_writel`).
+    Never,
+}
+
+/// Whether LFB writes honour `lfbMode`'s lane order (bits 10:9), byte swizzle (bit 12)
+/// and Y origin (bit 13, and `fbzMode`'s for pipelined writes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum LfbOrdering {
+    /// As spec 5.20 says (MAME, DOSBox Staging).
+    #[default]
+    Applied,
+    /// 86Box (`voodoo_fb_writel`, `voodoo_fb_writew`): none is implemented; data is
+    /// always ARGB in host order and row 0 is the top of the buffer.
+    Ignored,
 }
 
 /// Which alpha the alpha test (spec 5.18.1) compares for triangles.
@@ -126,6 +140,7 @@ pub struct PixelProfile {
     pub aux_write: AuxWrite,
     pub pattern_row: PatternRow,
     pub lfb_word_swap: LfbWordSwap,
+    pub lfb_ordering: LfbOrdering,
     pub float_overflow: FloatOverflow,
     pub subpixel_z: SubpixelZ,
     pub param_origin: ParamOrigin,
