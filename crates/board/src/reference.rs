@@ -70,9 +70,7 @@ impl Reference {
                     EdgeRounding::TruncHalfDown,
                     EdgeRounding::Box86Fixed,
                 ),
-                // UNVERIFIED: 86Box's W-to-float conversion is not modelled as its own
-                // choice; DOSBox Staging's stands in for it.
-                wfloat: r.pick(WFloatEdges::Mame, WFloatEdges::Dosbox, WFloatEdges::Dosbox),
+                wfloat: r.pick(WFloatEdges::Mame, WFloatEdges::Dosbox, WFloatEdges::Box86),
                 clip_right: r.pick(
                     ClipRightEdge::Exclusive,
                     ClipRightEdge::DropLastColumn,

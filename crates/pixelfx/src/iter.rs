@@ -88,6 +88,9 @@ pub enum WFloatEdges {
     Dosbox,
     /// MAME: exponent from the leading zeros of the 64-bit value; the +1 may carry.
     Mame,
+    /// 86Box (`voodoo_half_triangle`'s `w_depth`): as DOSBox Staging, except that W below
+    /// 1.0 >> 16 gives 0xf001.
+    Box86,
 }
 
 /// The 16-bit floating-point form of iterated W used for W-buffering and table fog
@@ -95,13 +98,17 @@ pub enum WFloatEdges {
 #[inline]
 pub fn wfloat(w: Fx32_32, edges: WFloatEdges) -> u16 {
     match edges {
-        WFloatEdges::Dosbox => {
+        WFloatEdges::Dosbox | WFloatEdges::Box86 => {
             if w & 0xffff_0000_0000 != 0 {
                 return 0;
             }
             let t = w as u32;
             if t & 0xffff_0000 == 0 {
-                return 0xffff;
+                return if edges == WFloatEdges::Box86 {
+                    0xf001
+                } else {
+                    0xffff
+                };
             }
             let exp = t.leading_zeros();
             let v = (exp << 12) | ((!t >> (19 - exp)) & 0xfff);
@@ -155,6 +162,10 @@ mod tests {
         assert_eq!(wfloat(0x1_0000, WFloatEdges::Mame), 0x0000);
         assert_eq!(wfloat(0x8000, WFloatEdges::Dosbox), 0xffff);
         assert_eq!(wfloat(0x8000, WFloatEdges::Mame), 0xffff);
+        // 86Box: 0xf001 below 2^-16, DOSBox's values elsewhere.
+        assert_eq!(wfloat(0x8000, WFloatEdges::Box86), 0xf001);
+        assert_eq!(wfloat(1 << 31, WFloatEdges::Box86), 0x1000);
+        assert_eq!(wfloat(1 << 32, WFloatEdges::Box86), 0);
     }
 
     #[test]
