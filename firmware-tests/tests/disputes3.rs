@@ -254,22 +254,28 @@ fn filter_select_either_bit() {
 /// texel.
 const OVERRIDE_ONLY: u32 = 1 | 1 << 7 | 1 << 8 | 1 << 14 | 1 << 27;
 
-/// An opaque RGB565 texel (alpha 0xff) under [`OVERRIDE_ONLY`], `color0` = 0x80a0c0e0.
-fn override_program(override_texel: OverrideTexel) -> u16 {
-    let mut p = board(
-        PixelProfile {
-            override_texel,
-            ..Default::default()
-        },
-        TexelProfile::default(),
-    );
+/// A board whose TMU holds a white, opaque RGB565 LOD 7 (2 x 2) at base 0, bound with
+/// `textureMode` = `texture_mode`.
+fn white_texture_board(pixel: PixelProfile, texel: TexelProfile, texture_mode: u32) -> Emulator {
+    let mut p = board(pixel, texel);
     p.write(addr::FBZ_MODE, BASE);
-    p.write(addr::COLOR0, 0x80a0_c0e0);
-    p.write(addr::TEXTURE_MODE, 10 << 8 | DECAL_RGB332);
+    p.write(addr::TEXTURE_MODE, texture_mode);
     p.write(addr::T_LOD, 28 | 28 << 6);
     p.write(addr::TEX_BASE_ADDR, 0);
     p.write(TEX_BASE | 7 << 17, 0xffff_ffff);
-    textured_pixel(&mut p, OVERRIDE_ONLY, 0)
+    p
+}
+
+/// The white texel (alpha 0xff) as an RGB565 decal under `fbzColorPath` = `cp`,
+/// `color0` = 0x80a0c0e0.
+fn override_program(override_texel: OverrideTexel, cp: u32) -> u16 {
+    let pixel = PixelProfile {
+        override_texel,
+        ..Default::default()
+    };
+    let mut p = white_texture_board(pixel, TexelProfile::default(), 10 << 8 | DECAL_RGB332);
+    p.write(addr::COLOR0, 0x80a0_c0e0);
+    textured_pixel(&mut p, cp, 0)
 }
 
 /// `OverrideTexel::Texel` (spec 5.16; DOSBox Staging, 86Box; default): texture alpha
@@ -277,7 +283,7 @@ fn override_program(override_texel: OverrideTexel) -> u16 {
 #[test]
 fn override_reads_the_texel() {
     assert_eq!(
-        override_program(OverrideTexel::Texel),
+        override_program(OverrideTexel::Texel, OVERRIDE_ONLY),
         rgb565_truncated(0xa0, 0xc0, 0xe0)
     );
 }
@@ -287,25 +293,15 @@ fn override_reads_the_texel() {
 #[test]
 fn override_reads_zero_when_the_texel_is_unused() {
     assert_eq!(
-        override_program(OverrideTexel::ZeroWhenUnused),
+        override_program(OverrideTexel::ZeroWhenUnused, OVERRIDE_ONLY),
         rgb565_truncated(0x20, 0x30, 0x40)
     );
     // Once the colour comes from the texel as well, MAME fetches it: c_other = texel
     // (not zeroed) plus c_local = color0 saturates to white.
-    let mut p = board(
-        PixelProfile {
-            override_texel: OverrideTexel::ZeroWhenUnused,
-            ..Default::default()
-        },
-        TexelProfile::default(),
+    assert_eq!(
+        override_program(OverrideTexel::ZeroWhenUnused, OVERRIDE_ONLY & !(1 << 8)),
+        0xffff
     );
-    p.write(addr::FBZ_MODE, BASE);
-    p.write(addr::COLOR0, 0x80a0_c0e0);
-    p.write(addr::TEXTURE_MODE, 10 << 8 | DECAL_RGB332);
-    p.write(addr::T_LOD, 28 | 28 << 6);
-    p.write(addr::TEX_BASE_ADDR, 0);
-    p.write(TEX_BASE | 7 << 17, 0xffff_ffff);
-    assert_eq!(textured_pixel(&mut p, OVERRIDE_ONLY & !(1 << 8), 0), 0xffff);
 }
 
 // --- a_local from iterated Z: ZAlphaByte -----------------------------------------------
@@ -361,18 +357,11 @@ fn z_alpha_low_byte() {
 /// A white RGB565 texel under a `textureMode` whose combine zeroes everything
 /// (`tc_zero_other`, `tca_zero_other`, nothing added) on the default one-TMU board.
 fn chain_program(chain: ChainModel) -> u16 {
-    let mut p = board(
-        PixelProfile::default(),
-        TexelProfile {
-            chain,
-            ..Default::default()
-        },
-    );
-    p.write(addr::FBZ_MODE, BASE);
-    p.write(addr::TEXTURE_MODE, 10 << 8 | 1 << 12 | 1 << 21);
-    p.write(addr::T_LOD, 28 | 28 << 6);
-    p.write(addr::TEX_BASE_ADDR, 0);
-    p.write(TEX_BASE | 7 << 17, 0xffff_ffff);
+    let texel = TexelProfile {
+        chain,
+        ..Default::default()
+    };
+    let mut p = white_texture_board(PixelProfile::default(), texel, 10 << 8 | 1 << 12 | 1 << 21);
     textured_pixel(&mut p, COLOR_PATH_TEXTURE, 0)
 }
 
