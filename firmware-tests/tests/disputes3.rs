@@ -5,7 +5,8 @@
 //! how the filter bits choose point or bilinear sampling (`FilterSelect`), what the
 //! local-select override reads when nothing else takes the texel (`OverrideTexel`),
 //! which byte of Z is `a_local` (`ZAlphaByte`), the stipple rotation (`StippleRotate`),
-//! the LFB ordering bits (`LfbOrdering`) and the combine shortcuts of 86Box
+//! the LFB ordering bits (`LfbOrdering`), the iterator clamp (`IteratorClamp`) and the
+//! combine shortcuts of 86Box
 //! (`ChainModel`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
@@ -16,7 +17,8 @@ use firmware_tests::{
     fastfill, lfb32, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
 };
 use pixelfx::profile::{
-    FastfillDither, LfbOrdering, OverrideTexel, ParamOrigin, StippleRotate, ZAlphaByte,
+    FastfillDither, IteratorClamp, LfbOrdering, OverrideTexel, ParamOrigin, StippleRotate,
+    ZAlphaByte,
 };
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
@@ -480,4 +482,43 @@ fn lfb_ordering_ignored() {
             rgb565_truncated(0x10, 0x10, 0x30)
         ]
     );
+}
+
+// --- iterator clamping: IteratorClamp ---------------------------------------------------
+
+/// Red starts at 250 and climbs 4 per pixel (12.12 `dRdX` = 4.0) from vertex A at
+/// (0, 0); dithering is off. Returns red (5 bits) at x = 0, 2 and 4 of row 1: 250, 258
+/// (one past 0x100) and 266.
+fn clamp_program(iterator_clamp: IteratorClamp) -> [u16; 3] {
+    let mut p = board(
+        PixelProfile {
+            iterator_clamp,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(addr::FBZ_MODE, BASE);
+    p.write(addr::FBZ_COLOR_PATH, 0);
+    let t = Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000);
+    triangle_fixed(&mut p, &t);
+    p.write(addr::START_R, 250 << 12);
+    p.write(addr::D_R_DX, 4 << 12);
+    p.write(addr::TRIANGLE_CMD, t.area_sign());
+    [0, 2, 4].map(|x| p.read_pixel(Buffer::Back, x, 1) >> 11)
+}
+
+/// `IteratorClamp::PseudoClamp` (spec 5.16; MAME, DOSBox Staging; default): 258 is
+/// 0x102, neither 0x100 nor 0xfff, so it wraps to 2; 266 wraps to 10.
+#[test]
+fn iterator_pseudo_clamp_wraps() {
+    assert_eq!(
+        clamp_program(IteratorClamp::PseudoClamp),
+        [250 >> 3, 2 >> 3, 10 >> 3]
+    );
+}
+
+/// `IteratorClamp::Saturate` (86Box): both saturate at 255.
+#[test]
+fn iterator_saturates() {
+    assert_eq!(clamp_program(IteratorClamp::Saturate), [250 >> 3, 31, 31]);
 }

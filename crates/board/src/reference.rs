@@ -22,8 +22,8 @@ use pixelfx::fog::{
 };
 use pixelfx::profile::{
     AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
-    FloatOverflow, LfbOrdering, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow, StippleRotate,
-    SubpixelZ, WFloatEdges, ZAlphaByte,
+    FloatOverflow, IteratorClamp, LfbOrdering, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow,
+    StippleRotate, SubpixelZ, WFloatEdges, ZAlphaByte,
 };
 use texelfx::{
     A8Expansion, BilinearPrecision, ChainModel, CoordRounding, DecalInvert, DetailRule,
@@ -124,6 +124,11 @@ impl Reference {
                     StippleRotate::PerScanline,
                     StippleRotate::PerScanline,
                     StippleRotate::PerTriangle,
+                ),
+                iterator_clamp: r.pick(
+                    IteratorClamp::PseudoClamp,
+                    IteratorClamp::PseudoClamp,
+                    IteratorClamp::Saturate,
                 ),
                 fog: FogProfile {
                     difference: r.pick(

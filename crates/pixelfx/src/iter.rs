@@ -74,6 +74,39 @@ pub fn clamp_z(z: Fx20_12) -> u16 {
     }
 }
 
+/// How the colour and Z iterators are clamped into 8-bit colours and the 16-bit depth.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+pub enum IteratorClamp {
+    /// The SST-1 pseudo-clamp of [`clamp_colour`] and [`clamp_z`]: only the values just
+    /// outside the range are caught, the rest wrap (spec 5.16; MAME, DOSBox Staging).
+    #[default]
+    PseudoClamp,
+    /// Saturation to 0..=255 and 0..=0xffff (86Box `CLAMP`, `CLAMP16`).
+    Saturate,
+}
+
+impl IteratorClamp {
+    /// One 12.12 colour iterator to 8 bits.
+    #[inline(always)]
+    pub fn colour(self, v: Fx12_12) -> u8 {
+        match self {
+            IteratorClamp::PseudoClamp => clamp_colour(v),
+            IteratorClamp::Saturate => (v >> 12).clamp(0, 0xff) as u8,
+        }
+    }
+
+    /// The 20.12 Z iterator to 16 bits.
+    #[inline(always)]
+    pub fn z(self, z: Fx20_12) -> u16 {
+        match self {
+            IteratorClamp::PseudoClamp => clamp_z(z),
+            IteratorClamp::Saturate => (z >> 12).clamp(0, 0xffff) as u16,
+        }
+    }
+}
+
 /// Which formula turns iterated W into the 16-bit floating-point depth ("wfloat":
 /// 4-bit exponent = leading zeros, 12-bit inverted mantissa, plus one).
 ///
@@ -147,6 +180,10 @@ mod tests {
         assert_eq!(clamp_z(0x1234_5678), 0x2345);
         assert_eq!(clamp_z(-0x1000), 0);
         assert_eq!(clamp_z(0x1000_0000), 0xffff);
+        // 86Box saturates: 0x101 -> 0xff, -2 -> 0; Z 0x12345 -> 0xffff.
+        let sat = IteratorClamp::Saturate;
+        assert_eq!((sat.colour(0x101 << 12), sat.colour(-2 << 12)), (0xff, 0));
+        assert_eq!((sat.z(0x1234_5678), sat.z(-0x1000)), (0xffff, 0));
     }
 
     #[test]

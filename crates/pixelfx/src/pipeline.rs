@@ -17,7 +17,7 @@ use sst1_regs::{AlphaMode, FbzColorPath, FbzMode, FogMode, Rgba};
 
 use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
-use crate::iter::{clamp_colour, clamp_z, wfloat, Iterated};
+use crate::iter::{wfloat, Iterated};
 use crate::profile::{AuxWrite, ClipRightEdge, OverrideTexel, ZAlphaByte};
 use crate::specialize::{value, Known, LIVE};
 use crate::stats::Kill;
@@ -176,7 +176,8 @@ impl Fbi {
 
         // --- depth value and test ---
         let wf = wfloat(it.w, profile.wfloat);
-        let z16 = clamp_z(it.z);
+        let clamp = profile.iterator_clamp;
+        let z16 = clamp.z(it.z);
         let bias = mode.enable_depth_bias().then_some(st.za_color as u16);
         let depth_value = depth::value(mode.wbuffer_select(), z16, wf, bias);
         let aux_index = st.aux.and_then(|a| self.fb.index(a, x, scry));
@@ -205,10 +206,10 @@ impl Fbi {
         };
         let iterated = match source {
             Source::Triangle => Rgba {
-                r: clamp_colour(it.argb[0]),
-                g: clamp_colour(it.argb[1]),
-                b: clamp_colour(it.argb[2]),
-                a: clamp_colour(it.argb[3]),
+                r: clamp.colour(it.argb[0]),
+                g: clamp.colour(it.argb[1]),
+                b: clamp.colour(it.argb[2]),
+                a: clamp.colour(it.argb[3]),
             },
             Source::Lfb(c) => c,
         };

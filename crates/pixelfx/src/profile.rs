@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::iter::WFloatEdges;
+pub use crate::iter::{IteratorClamp, WFloatEdges};
 pub use crate::params::{FloatOverflow, ParamOrigin, SubpixelZ};
 pub use crate::setup::EdgeRounding;
 pub use sst1_dither::DitherMatrix2x2;
@@ -150,6 +150,7 @@ pub struct PixelProfile {
     pub override_texel: OverrideTexel,
     pub z_alpha: ZAlphaByte,
     pub stipple_rotate: StippleRotate,
+    pub iterator_clamp: IteratorClamp,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,
 }
