@@ -6,8 +6,7 @@
 //! local-select override reads when nothing else takes the texel (`OverrideTexel`),
 //! which byte of Z is `a_local` (`ZAlphaByte`), the stipple rotation (`StippleRotate`),
 //! the LFB ordering bits (`LfbOrdering`), the iterator clamp (`IteratorClamp`) and the
-//! combine shortcuts of 86Box
-//! (`ChainModel`).
+//! combine shortcuts of 86Box (`ChainModel`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
 
