@@ -28,7 +28,7 @@ use pixelfx::profile::{
 use texelfx::{
     A8Expansion, BilinearPrecision, ChainModel, CoordRounding, DecalInvert, DetailRule,
     FilterSelect, LodCalc, LodDither, LodZeroFrac, NccQ2Write, NccUpdate, PerspDivide, Rgb332Blue,
-    Trilinear,
+    TextureCacheKey, Trilinear,
 };
 
 use crate::{AccuracyProfile, PixelProfile, TexelProfile};
@@ -190,6 +190,11 @@ impl Reference {
                 ),
                 chain: r.pick(ChainModel::Full, ChainModel::Full, ChainModel::Box86),
                 ncc_q2: r.pick(NccQ2Write::Q2, NccQ2Write::Q2, NccQ2Write::IntoI2),
+                texture_cache: r.pick(
+                    TextureCacheKey::Exact,
+                    TextureCacheKey::Exact,
+                    TextureCacheKey::Box86,
+                ),
                 ncc_update: r.pick(
                     NccUpdate::Immediate,
                     NccUpdate::OnTextureRegWrite,

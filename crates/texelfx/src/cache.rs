@@ -57,6 +57,13 @@ impl TexelCache {
         self.valid |= 1 << lod;
     }
 
+    /// Exchanges the levels and their valid bits with `levels` and `valid` (how the 86Box
+    /// texture cache, `crate::box86_cache`, lends an entry for a triangle).
+    pub fn swap_storage(&mut self, levels: &mut [Vec<u32>; 9], valid: &mut u16) {
+        std::mem::swap(&mut self.levels, levels);
+        std::mem::swap(&mut self.valid, valid);
+    }
+
     /// A buffer to decode LOD `lod` into: the level's old storage, emptied.
     pub fn take_buffer(&mut self, lod: usize) -> Vec<u32> {
         self.valid &= !(1 << lod);

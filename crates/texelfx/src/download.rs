@@ -45,6 +45,7 @@ impl Tmu {
             let texels = if width > 1 { 2 } else { 1 };
             self.cache
                 .written(row.wrapping_add(s * 2), texels * 2, self.ram_mask);
+            self.box86.written(row.wrapping_add(s * 2) & self.ram_mask);
             for k in 0..texels {
                 let a = row.wrapping_add((s + k) * 2);
                 let texel = (data >> (16 * k)) as u16;
@@ -59,6 +60,7 @@ impl Tmu {
             };
             self.cache
                 .written(row.wrapping_add(s), width.min(4), self.ram_mask);
+            self.box86.written(row.wrapping_add(s) & self.ram_mask);
             for k in 0..width.min(4) {
                 self.store(row.wrapping_add(s + k), (data >> (8 * k)) as u8);
             }

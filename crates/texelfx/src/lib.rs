@@ -21,6 +21,7 @@
 //!
 //! Where the reference emulators disagree, [`TexelProfile`] selects the behaviour.
 
+mod box86_cache;
 mod cache;
 mod download;
 mod format;
@@ -34,7 +35,7 @@ use sample::SpanRecip;
 pub use sst1_chain::DetailRule;
 use sst1_chain::{detail_factor, Factors, TextureCombine};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
-use sst1_regs::{addr, Rgba, TextureMode};
+use sst1_regs::{addr, Rgba, TLod, TextureMode};
 
 /// Signed fixed point with 14 integer and 18 fraction bits (`startS`, `dSdX`, ...).
 pub type Fx14_18 = i32;
@@ -160,6 +161,19 @@ pub enum NccQ2Write {
     /// Table 0's I2, leaving Q2 as it was (86Box `voodoo_reg_writel`: the
     /// `SST_nccTable0_Q2` case stores into `i[2]`).
     IntoI2,
+}
+
+/// What the TMU's decoded textures are found by.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum TextureCacheKey {
+    /// No behaviour: texels always reflect the memory, format and tables in force (the
+    /// decoded-texel cache is invalidated exactly; spec, MAME, DOSBox Staging).
+    #[default]
+    Exact,
+    /// 86Box: decoded textures kept by base address, `tLOD` and palette checksum only, so
+    /// a new format or NCC table over the same memory reads the old decode until a
+    /// download writes into it (see `box86_cache`).
+    Box86,
 }
 
 /// When writes to the NCC tables take effect.
@@ -299,6 +313,8 @@ pub struct TexelProfile {
     pub ncc_q2: NccQ2Write,
     /// How the TMU chain combines (read from TMU 0's profile by the board).
     pub chain: ChainModel,
+    /// What decoded textures are found by.
+    pub texture_cache: TextureCacheKey,
     /// When NCC table writes take effect.
     pub ncc_update: NccUpdate,
     /// The trilinear bit.
@@ -376,6 +392,8 @@ pub struct Tmu {
     passthrough: bool,
     /// Decoded levels of the bound texture.
     cache: TexelCache,
+    /// 86Box's texture cache ([`TextureCacheKey::Box86`]).
+    box86: box86_cache::Box86Cache,
     /// Sample through `cache` (off: decode every texel from memory, the reference path).
     cached: bool,
     /// Perspective factors of the span being shaded.
@@ -438,6 +456,7 @@ impl Tmu {
             lut_stale: true,
             passthrough: false,
             cache: TexelCache::new(),
+            box86: Default::default(),
             cached: true,
             span: SpanRecip::default(),
         }
@@ -450,6 +469,8 @@ impl Tmu {
 
     /// Selects the behaviour switches.
     pub fn set_profile(&mut self, p: TexelProfile) {
+        self.box86_return();
+        self.box86.clear();
         self.profile = p;
         self.refresh();
         if p.ncc_update == NccUpdate::Immediate {
@@ -488,6 +509,7 @@ impl Tmu {
     /// singles, and converted with the 32 fraction bits the references keep. Offsets that
     /// are not TMU registers are ignored.
     pub fn write_reg(&mut self, offset: u32, value: u32) {
+        self.box86_return();
         let offset = offset & 0x3fc;
         let fixed_st = |v: u32| Fx32::from(v as i32) << 14;
         let fixed_w = |v: u32| Fx32::from(v as i32) << 2;
@@ -539,12 +561,16 @@ impl Tmu {
     /// A 32-bit write into this TMU's texture download window: `addr` is the aperture offset
     /// minus 0x800000 (TMU-select bits 22:21 may still be present; they are ignored).
     pub fn write_texture(&mut self, addr: u32, value: u32) {
+        self.box86_return();
         self.download(addr, value);
     }
 
     /// Called at the start of each triangle, after its register writes: computes the base
     /// LOD from the S/T gradients.
     pub fn begin_triangle(&mut self) {
+        if self.profile.texture_cache == TextureCacheKey::Box86 {
+            self.box86_bind();
+        }
         self.span.clear();
         let g = [self.ddx[0], self.ddy[0], self.ddx[1], self.ddy[1]];
         self.lod_base = lod::lod_base(self.profile.lod, g, self.t_lod);
@@ -676,12 +702,85 @@ impl Tmu {
         let tformat = TextureMode(self.texture_mode).format() as u32;
         let decode = format::Decode::of(tformat);
         let lut = format::lut(tformat, &self.lookups());
-        if decode != self.decode || lut != *self.texel_lut {
+        // A lent 86Box entry keeps the texels it was decoded with (TextureCacheKey::Box86).
+        if (decode != self.decode || lut != *self.texel_lut) && self.box86.lent.is_none() {
             self.cache.clear();
         }
         self.decode = decode;
         *self.texel_lut = lut;
         self.lut_stale = false;
+    }
+
+    /// [`TextureCacheKey::Box86`]: lends the cached decode of the bound texture to `cache`
+    /// for this triangle, decoding it first (every level, with the state in force) if no
+    /// entry has its key. Source: 86Box `voodoo_use_texture`.
+    fn box86_bind(&mut self) {
+        self.box86_return();
+        if self.lut_stale {
+            self.rebuild_lut();
+        }
+        let format = TextureMode(self.texture_mode).format() as u32;
+        let palette = if matches!(format, 5 | 6 | 14) {
+            // 86Box XORs the stored 0xffRRGGBB words; the 256 0xff bytes cancel.
+            self.palette.iter().fold(0, |x, &[r, g, b]| {
+                x ^ (u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b))
+            })
+        } else {
+            0
+        };
+        let key = box86_cache::Key {
+            base: self.tex_base[0],
+            t_lod: self.t_lod & 0x00f0_0fff,
+            palette,
+        };
+        let i = match self.box86.find(key) {
+            Some(i) => i,
+            None => {
+                self.cache.clear();
+                let t_lod = TLod(self.t_lod);
+                let (lo, hi) = (
+                    (t_lod.lodmin() >> 2) as usize,
+                    (t_lod.lodmax() >> 2) as usize,
+                );
+                let (mut first, mut last) = (u32::MAX, 0);
+                for lod in 0..9 {
+                    if (self.layout.lodmask >> lod) & 1 == 0 {
+                        continue;
+                    }
+                    self.decode_level(lod);
+                    if (lo..=hi.min(8)).contains(&lod) {
+                        let texels = (self.layout.smax(lod) + 1) * (self.layout.tmax(lod) + 1);
+                        let base = self.layout.lod_base[lod];
+                        first = first.min(base);
+                        last = last.max(base + (texels << self.layout.bpp_shift) - 1);
+                    }
+                }
+                let mut entry = box86_cache::Entry {
+                    key,
+                    levels: Default::default(),
+                    valid: 0,
+                    span: if first <= last {
+                        box86_cache::page_span(first, last)
+                    } else {
+                        (0, 0)
+                    },
+                };
+                self.cache.swap_storage(&mut entry.levels, &mut entry.valid);
+                self.box86.insert(entry)
+            }
+        };
+        let (levels, valid) = self.box86.storage(i);
+        self.cache.swap_storage(levels, valid);
+        self.box86.lent = Some(i);
+    }
+
+    /// Takes a lent 86Box entry back from `cache` (before any register or texture write).
+    fn box86_return(&mut self) {
+        if let Some(i) = self.box86.lent.take() {
+            let (levels, valid) = self.box86.storage(i);
+            self.cache.swap_storage(levels, valid);
+            self.cache.clear();
+        }
     }
 
     /// A write to word `word` (0..12) of NCC table `table` (0, 1), or to the palette.

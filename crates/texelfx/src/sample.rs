@@ -117,7 +117,7 @@ impl Tmu {
             FilterSelect::ByLod => !mode.tminfilter(),
             FilterSelect::EitherBit => !mode.tmagfilter() && !mode.tminfilter(),
         };
-        let texel = if self.cached {
+        let texel = if self.cached || self.box86.lent.is_some() {
             if !self.cache.has(ilod) {
                 self.decode_level(ilod);
             }
@@ -148,7 +148,7 @@ impl Tmu {
 
     /// Decodes LOD `lod` of the bound texture into the cache, with the fetch the uncached
     /// path uses.
-    fn decode_level(&mut self, lod: usize) {
+    pub(crate) fn decode_level(&mut self, lod: usize) {
         let mut texels = self.cache.take_buffer(lod);
         let (w, h) = (self.layout.smax(lod) + 1, self.layout.tmax(lod) + 1);
         texels.reserve((w * h) as usize);

@@ -779,3 +779,37 @@ fn ncc_table0_q2_write_target() {
         assert_eq!(tmu.ncc_regs[1][10], 0x89, "{choice:?}");
     }
 }
+
+/// `TextureCacheKey`: an 8-bit texel 0x5a read as I8, then the same memory bound as A8
+/// without a download. Exact: A8's (0x5a, 0x5a, 0x5a, 0x5a). 86Box: the I8 decode is found
+/// by base address and tLOD and reused, (0x5a, 0x5a, 0x5a, 0xff), until a download into the
+/// texture drops it.
+#[test]
+fn texture_cache_key_choices() {
+    let sample = |tmu: &mut Tmu| {
+        tmu.begin_triangle();
+        tmu.texel(0, 0, 0, 0, BLACK)
+    };
+    for (choice, stale) in [
+        (TextureCacheKey::Exact, false),
+        (TextureCacheKey::Box86, true),
+    ] {
+        let mut tmu = Tmu::new(0, 1 << 20);
+        tmu.set_profile(TexelProfile {
+            texture_cache: choice,
+            ..Default::default()
+        });
+        tmu.write_reg(addr::TEXTURE_MODE, fmt(3) | DECAL);
+        tmu.write_reg(addr::T_LOD, fixed_lod(8));
+        tmu.write_reg(addr::TEX_BASE_ADDR, 0);
+        tmu.write_texture(8 << 17, 0x5a5a_5a5a);
+        set_iter(&mut tmu, 0, 0, 0, 0, ONE_W);
+        assert_eq!(sample(&mut tmu), rgba([0x5a, 0x5a, 0x5a, 0xff]), "{choice:?}");
+        tmu.write_reg(addr::TEXTURE_MODE, fmt(2) | DECAL);
+        let a8 = rgba([0x5a, 0x5a, 0x5a, if stale { 0xff } else { 0x5a }]);
+        assert_eq!(sample(&mut tmu), a8, "{choice:?}");
+        // A download into the texture drops 86Box's entry: A8 from then on.
+        tmu.write_texture(8 << 17, 0x6b6b_6b6b);
+        assert_eq!(sample(&mut tmu), rgba([0x6b; 4]), "{choice:?}");
+    }
+}
