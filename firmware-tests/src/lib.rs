@@ -513,7 +513,7 @@ pub mod expect {
     /// The 16-bit floating-point depth of a W whose integer part is zero and whose
     /// 32 fraction bits are `frac` (at least 2^-16): exponent = leading zeros of the
     /// fraction, mantissa = the 12 bits after the leading one, inverted, plus one.
-    /// Source: spec 5.19 (W-buffer diagram: "exp = find_first_one(w[31:16])",
+    /// Source: spec 5.19 (W-buffer diagram: "exp = find_first_one(w\[31:16\])",
     /// "inverse of the normalized w"); the final +1 from MAME and DOSBox Staging.
     pub const fn wfloat(frac: u32) -> u16 {
         let exp = frac.leading_zeros();

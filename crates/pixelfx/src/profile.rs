@@ -110,7 +110,7 @@ pub enum OverrideTexel {
 /// Which byte of the clamped 16-bit Z `cca_localselect` = 2 (iterated Z) gives `a_local`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum ZAlphaByte {
-    /// Z[27:20], the high byte (spec 5.16; MAME, 86Box).
+    /// Z\[27:20\], the high byte (spec 5.16; MAME, 86Box).
     #[default]
     High,
     /// The low byte (DOSBox Staging casts the clamped Z to `uint8_t`).

@@ -9,7 +9,7 @@
 //! knows a register's bits is the same code after constant folding: bit tests vanish,
 //! the combine units' input selections become fixed and disabled stages are dropped.
 //!
-//! [`select`] picks the walker for a triangle: the entry of [`SPECIALISED`] whose key
+//! `select` picks the walker for a triangle: the entry of [`SPECIALISED`] whose key
 //! equals the triangle's [`RasterKey`], otherwise the reference walker. A key holds every
 //! bit the FBI stores (only `alphaMode.alpha_ref` is left out and read at run time), so a
 //! specialised walker computes with exactly the values the reference reads.
@@ -29,7 +29,7 @@ use crate::raster::TexelSource;
 
 /// A mode register as a const generic parameter: the high word is a mask of the bits
 /// known at compile time, the low word their values; the other bits are read at run
-/// time. Built with [`known_bits`], applied with [`value`].
+/// time. Built with `known_bits`, applied with `value`.
 pub type Known = u64;
 
 /// Nothing known: read the whole register at run time (the reference path).

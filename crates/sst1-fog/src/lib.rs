@@ -11,8 +11,8 @@
 //! ```
 //!
 //! The `>> 10` is the 6.2 delta (`>> 2`) times an 8-bit fraction (`>> 8`).
-//! Source: spec 5.17 block diagram (6-bit index from exponent and mantissa[11:10],
-//! mantissa[9:2] into the 8x8 multiply); MAME `apply_fogging`, DOSBox Staging
+//! Source: spec 5.17 block diagram (6-bit index from exponent and mantissa\[11:10\],
+//! mantissa\[9:2\] into the 8x8 multiply); MAME `apply_fogging`, DOSBox Staging
 //! `APPLY_FOGGING` and 86Box `APPLY_FOG` agree (MAME and DOSBox shift by 6 and then 4,
 //! which is the same for these non-negative products).
 

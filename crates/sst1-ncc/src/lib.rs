@@ -55,7 +55,7 @@ pub enum NccWrite {
 ///
 /// Source: spec 5.56.2 ("written through the NCC table 0 I and Q register space when the
 /// MSB of the register write data is set"); the palette index LSB is the word's LSB
-/// (even words I0, I2, Q0, Q2 give P[0] = 0). MAME `tmu_state::ncc_w` agrees.
+/// (even words I0, I2, Q0, Q2 give `P[0]` = 0). MAME `tmu_state::ncc_w` agrees.
 pub fn classify_write(table: usize, word: usize, value: u32) -> NccWrite {
     if table == 0 && (4..NCC_WORDS).contains(&word) && value & 0x8000_0000 != 0 {
         let index = (((value >> 24) & 0x7f) << 1) as u8 | (word & 1) as u8;

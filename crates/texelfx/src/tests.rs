@@ -804,7 +804,11 @@ fn texture_cache_key_choices() {
         tmu.write_reg(addr::TEX_BASE_ADDR, 0);
         tmu.write_texture(8 << 17, 0x5a5a_5a5a);
         set_iter(&mut tmu, 0, 0, 0, 0, ONE_W);
-        assert_eq!(sample(&mut tmu), rgba([0x5a, 0x5a, 0x5a, 0xff]), "{choice:?}");
+        assert_eq!(
+            sample(&mut tmu),
+            rgba([0x5a, 0x5a, 0x5a, 0xff]),
+            "{choice:?}"
+        );
         tmu.write_reg(addr::TEXTURE_MODE, fmt(2) | DECAL);
         let a8 = rgba([0x5a, 0x5a, 0x5a, if stale { 0xff } else { 0x5a }]);
         assert_eq!(sample(&mut tmu), a8, "{choice:?}");
