@@ -9,7 +9,7 @@
 
 use std::path::{Path, PathBuf};
 
-use sst1_board::{Board, BufferKind, Stats};
+use sst1_board::{AccuracyProfile, Board, BufferKind, Reference, Stats};
 use sst1_trace::{execute, load_trace};
 
 /// Traces too slow for every CI run; [`slow_traces_identical`] covers them.
@@ -28,9 +28,10 @@ struct Outcome {
     stats: Stats,
 }
 
-fn replay(path: &Path, reference: bool) -> Outcome {
+fn replay(path: &Path, profile: AccuracyProfile, reference: bool) -> Outcome {
     let trace = load_trace(path).unwrap_or_else(|e| panic!("{e}"));
     let mut board = Board::new(trace.board_config());
+    board.set_profile(profile);
     board.set_reference(reference);
     let mut buffers: Vec<Buffer> = execute(&trace.ops, &mut board, |_| {})
         .into_iter()
@@ -57,11 +58,11 @@ fn replay(path: &Path, reference: bool) -> Outcome {
     }
 }
 
-/// Differences between the two replays of `path`, in words.
-fn compare(path: &Path) -> Vec<String> {
+/// Differences between the two replays of `path` with `profile`, in words.
+fn compare(path: &Path, profile: AccuracyProfile) -> Vec<String> {
     let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let reference = replay(path, true);
-    let fast = replay(path, false);
+    let reference = replay(path, profile, true);
+    let fast = replay(path, profile, false);
     let mut problems = Vec::new();
     if reference.stats != fast.stats {
         problems.push(format!(
@@ -111,7 +112,11 @@ fn traces(dir: &str, keep: impl Fn(&str) -> bool) -> Vec<PathBuf> {
 }
 
 fn check_all(paths: &[PathBuf]) {
-    let problems: Vec<String> = paths.iter().flat_map(|p| compare(p)).collect();
+    check_all_with(paths, AccuracyProfile::default());
+}
+
+fn check_all_with(paths: &[PathBuf], profile: AccuracyProfile) {
+    let problems: Vec<String> = paths.iter().flat_map(|p| compare(p, profile)).collect();
     assert!(
         problems.is_empty(),
         "{} difference(s) between the reference and fast paths:\n{}",
@@ -140,6 +145,17 @@ fn example_traces_identical() {
     let paths = traces("examples", |_| true);
     assert!(!paths.is_empty());
     check_all(&paths);
+}
+
+/// The reference emulators' profiles (the conformance vote replays every trace with
+/// them) take the same specialised walkers: both paths agree for each of them too.
+#[test]
+fn reference_profiles_identical() {
+    let mut paths = traces("conformance/traces", |name| !SLOW.contains(&name));
+    paths.extend(traces("glide-sdk/traces", |_| true));
+    for reference in Reference::ALL {
+        check_all_with(&paths, reference.profile());
+    }
 }
 
 #[test]
