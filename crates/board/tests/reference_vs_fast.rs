@@ -1,7 +1,8 @@
 //! Differential test of the specialised pixel path (`pixelfx::specialize`) against the
 //! reference path (`Board::set_reference(true)`): every conformance, glide-sdk and example
-//! trace is replayed both ways, and every dump the trace takes, the final front, back and
-//! aux buffers and the statistics counters must be bit-identical.
+//! trace is replayed both ways with the default profile, and the conformance and glide-sdk
+//! ones again with each reference emulator's profile; every dump the trace takes, the final
+//! front, back and aux buffers and the statistics counters must be bit-identical.
 //!
 //! `perf_tex_heavy` (about 40 s for both replays in release, texture-sampling bound)
 //! runs only in the ignored test: `cargo test -p sst1-board --release --test
