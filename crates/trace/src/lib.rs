@@ -12,8 +12,10 @@
 //! * [`Recorder`]: wraps any [`RegisterBus`](sst1_regs::RegisterBus) and logs every call.
 //! * [`replay`] / [`execute`]: drive a [`Board`](sst1_board::Board) with a trace.
 //! * [`OpCounts`]: what a trace does (writes, triangles, fills, swaps, registers touched).
+//! * [`judge`]: the conformance pass rule for a dump against the reference goldens.
 
 pub mod binary;
+pub mod judge;
 mod recorder;
 mod replay;
 pub mod text;

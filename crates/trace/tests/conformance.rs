@@ -33,6 +33,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use sst1_board::{Board, Reference};
 use sst1_regs::RegisterBus;
+use sst1_trace::judge::Rule;
 use sst1_trace::{execute, execute_references, load_trace, rgb565_to_rgb8, Dump};
 
 /// The reference emulators' golden folders, in [`Reference::ALL`] order.
@@ -95,13 +96,8 @@ fn cached_replay(suite: &'static str, trace: &'static str) -> Arc<Replay> {
 // Goldens and the pass rule.
 
 fn load_golden(suite: &str, oracle: &str, name: &str) -> Option<Vec<u16>> {
-    let path = repo().join(format!("traces/{suite}/golden/{oracle}/{name}.raw.gz"));
-    let bytes = std::fs::read(path).ok()?;
-    let raw = sst1_trace::gunzip_if_needed(&bytes).expect("golden gzip");
-    Some(
-        raw.chunks_exact(2)
-            .map(|b| u16::from_le_bytes([b[0], b[1]]))
-            .collect(),
+    sst1_trace::judge::load_golden(
+        &repo().join(format!("traces/{suite}/golden/{oracle}/{name}.raw.gz")),
     )
 }
 
@@ -111,27 +107,6 @@ fn golden_dims(len: usize) -> (usize, usize) {
         196_608 => (512, 384),
         480_000 => (800, 600),
         _ => (640, 480),
-    }
-}
-
-/// What the pass rule requires of one pixel.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Rule {
-    /// All goldens agree on this value.
-    Consensus(u16),
-    /// Two of three agree on this value.
-    Majority(u16),
-    /// No requirement.
-    Free,
-}
-
-fn rule(values: &[u16]) -> Rule {
-    match *values {
-        [a, b] if a == b => Rule::Consensus(a),
-        [a, b, c] if a == b && b == c => Rule::Consensus(a),
-        [a, b, c] if a == b || a == c => Rule::Majority(a),
-        [_, b, c] if b == c => Rule::Majority(b),
-        _ => Rule::Free,
     }
 }
 
@@ -164,34 +139,17 @@ impl Outcome {
 fn judge(goldens: &[(&str, Vec<u16>)], ours: &Dump) -> Outcome {
     let len = goldens[0].1.len();
     let (width, height) = golden_dims(len);
-    let rules: Vec<Rule> = (0..len)
-        .map(|i| {
-            let mut values = [0u16; ORACLES.len()];
-            for (value, (_, golden)) in values.iter_mut().zip(goldens) {
-                *value = golden[i];
-            }
-            rule(&values[..goldens.len()])
-        })
-        .collect();
-    let actual = (ours.data.len() == len).then(|| ours.data.clone());
-    let mut outcome = Outcome {
+    let buffers: Vec<&[u16]> = goldens.iter().map(|(_, g)| g.as_slice()).collect();
+    let j = sst1_trace::judge::judge(&buffers, &ours.data);
+    Outcome {
         width,
         height,
-        rules,
-        actual,
-        consensus_fail: 0,
-        majority_fail: 0,
-        free: 0,
-    };
-    for i in 0..len {
-        let fails = outcome.fails(i);
-        match outcome.rules[i] {
-            Rule::Free => outcome.free += 1,
-            Rule::Consensus(_) => outcome.consensus_fail += u64::from(fails),
-            Rule::Majority(_) => outcome.majority_fail += u64::from(fails),
-        }
+        rules: j.rules,
+        actual: j.same_size.then(|| ours.data.clone()),
+        consensus_fail: j.consensus_fail,
+        majority_fail: j.majority_fail,
+        free: j.free,
     }
-    outcome
 }
 
 fn describe(value: u16, aux: bool) -> String {

@@ -9,8 +9,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use sst1_board::{AccuracyProfile, Board, BufferKind};
+use sst1_board::{AccuracyProfile, Board, BufferKind, Reference};
 use sst1_regs::map;
+use sst1_trace::judge;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
     encode_binary, execute, execute_references, load_trace, read_trace, rgb565_to_rgb8,
@@ -61,6 +62,24 @@ enum Command {
         /// Accuracy profile as JSON for `--model single`: every disputed behaviour, or
         /// only those to change, e.g. `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see
         /// docs/accuracy.md).
+        #[arg(long, value_name = "FILE")]
+        profile: Option<PathBuf>,
+    },
+    /// Replay a trace and judge each of its dumps against reference emulators' goldens
+    /// with the conformance pass rule: every pixel where all goldens agree must match,
+    /// and every pixel where two of three agree. Exits with status 1 if a pixel fails.
+    Check {
+        /// Trace file: text or binary, optionally gzip-compressed.
+        trace: PathBuf,
+        /// Folder with one folder of golden dumps per reference emulator (`mame`,
+        /// `dosbox-staging`, `86box`), each dump named as the trace names it, as `.raw`
+        /// or `.raw.gz` (the layout of `traces/conformance/golden`).
+        #[arg(long, value_name = "DIR")]
+        goldens: PathBuf,
+        /// As for `replay`.
+        #[arg(long, value_enum)]
+        model: Option<Model>,
+        /// As for `replay`.
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
     },
@@ -133,6 +152,13 @@ fn main() -> ExitCode {
                 profile,
             )
         }),
+        Command::Check {
+            trace,
+            goldens,
+            model,
+            profile,
+        } => resolve_model(model, profile.as_deref())
+            .and_then(|profile| check(&trace, &goldens, profile)),
         Command::Demo { png } => demo(&png),
         Command::Info { trace } => info(&trace),
         Command::Reg { register, value } => reg(&register, &value),
@@ -291,6 +317,52 @@ fn replay(
             let text = serde_json::to_string_pretty(&s.to_json()).map_err(|e| e.to_string())?;
             std::fs::write(file, text + "\n").map_err(|e| format!("{}: {e}", file.display()))?;
         }
+    }
+    Ok(())
+}
+
+/// `voodoo check`: one line per dump, then the totals; an error if any pixel fails.
+fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Result<(), String> {
+    let trace = load_trace(path).map_err(|e| e.to_string())?;
+    let replayed = run(&trace, profile);
+    let (mut consensus, mut majority, mut judged) = (0, 0, 0);
+    for dump in &replayed.dumps {
+        let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
+        let found: Vec<(&str, Vec<u16>)> = Reference::ALL
+            .iter()
+            .filter_map(|r| {
+                let dir = goldens.join(r.golden_dir());
+                [format!("{stem}.raw.gz"), format!("{stem}.raw")]
+                    .iter()
+                    .find_map(|f| judge::load_golden(&dir.join(f)))
+                    .map(|g| (r.golden_dir(), g))
+            })
+            .collect();
+        if found.len() < 2 {
+            println!("{stem}: fewer than two goldens, not judged");
+            continue;
+        }
+        let buffers: Vec<&[u16]> = found.iter().map(|(_, g)| g.as_slice()).collect();
+        let j = judge::judge(&buffers, &dump.data);
+        let names: Vec<&str> = found.iter().map(|(n, _)| *n).collect();
+        println!(
+            "{stem}: {} consensus and {} majority pixels fail ({} pixels where all differ; {}){}",
+            j.consensus_fail,
+            j.majority_fail,
+            j.free,
+            names.join(", "),
+            if j.same_size { "" } else { "; size differs" }
+        );
+        consensus += j.consensus_fail;
+        majority += j.majority_fail;
+        judged += 1;
+    }
+    println!("{judged} dumps judged: {consensus} consensus and {majority} majority pixels fail");
+    if consensus + majority > 0 {
+        return Err(format!(
+            "{} pixels break the pass rule",
+            consensus + majority
+        ));
     }
     Ok(())
 }

@@ -230,3 +230,46 @@ fn replay_takes_a_partial_profile() {
     );
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn check_judges_dumps_against_goldens() {
+    let dir = scratch("check");
+    std::fs::write(dir.join("fill.trace"), DITHERED_FILL).unwrap();
+    stdout(&voodoo(&dir, &["replay", "fill.trace", "--out", "ours"]));
+    let ours = std::fs::read(dir.join("ours/fill_front.raw")).unwrap();
+    // All three goldens equal to our dump: every pixel is consensus and passes.
+    for name in ["mame", "dosbox-staging", "86box"] {
+        std::fs::create_dir_all(dir.join("gold").join(name)).unwrap();
+        std::fs::write(dir.join("gold").join(name).join("fill_front.raw"), &ours).unwrap();
+    }
+    let out = stdout(&voodoo(&dir, &["check", "fill.trace", "--goldens", "gold"]));
+    assert!(
+        out.starts_with(
+            "fill_front: 0 consensus and 0 majority pixels fail (0 pixels where all differ;"
+        ),
+        "{out}"
+    );
+    // Two goldens move pixel 0 and a third disagrees with both: one majority failure;
+    // pixel 1 changed in one golden only stays a majority that we meet.
+    let mut changed = ours.clone();
+    changed[0] ^= 0xff;
+    changed[2] ^= 0x01;
+    let mut other = ours.clone();
+    other[0] ^= 0x0f;
+    std::fs::write(dir.join("gold/mame/fill_front.raw"), &changed).unwrap();
+    let mut dosbox = ours.clone();
+    dosbox[0] ^= 0xff;
+    std::fs::write(dir.join("gold/dosbox-staging/fill_front.raw"), &dosbox).unwrap();
+    std::fs::write(dir.join("gold/86box/fill_front.raw"), &other).unwrap();
+    let out = voodoo(&dir, &["check", "fill.trace", "--goldens", "gold"]);
+    assert!(!out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.starts_with(
+            "fill_front: 0 consensus and 1 majority pixels fail (0 pixels where all differ;"
+        ),
+        "{text}"
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("1 pixels break the pass rule"));
+    std::fs::remove_dir_all(dir).unwrap();
+}
