@@ -5,7 +5,8 @@
 //! how the filter bits choose point or bilinear sampling (`FilterSelect`), what the
 //! local-select override reads when nothing else takes the texel (`OverrideTexel`),
 //! which byte of Z is `a_local` (`ZAlphaByte`), the stipple rotation (`StippleRotate`),
-//! the LFB ordering bits (`LfbOrdering`), the iterator clamp (`IteratorClamp`) and the
+//! the LFB ordering bits (`LfbOrdering`), the iterator clamp (`IteratorClamp`), what FBI
+//! graphics reset does to the buffers (`GraphicsReset`) and the
 //! combine shortcuts of 86Box (`ChainModel`).
 //!
 //! Each test's doc comment says which value a real board would show for each choice.
@@ -16,8 +17,8 @@ use firmware_tests::{
     fastfill, lfb32, rgb565_truncated, triangle_fixed, Buffer, Emulator, Port, Triangle,
 };
 use pixelfx::profile::{
-    FastfillDither, IteratorClamp, LfbOrdering, OverrideTexel, ParamOrigin, StippleRotate,
-    ZAlphaByte,
+    FastfillDither, GraphicsReset, IteratorClamp, LfbOrdering, OverrideTexel, ParamOrigin,
+    StippleRotate, ZAlphaByte,
 };
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
@@ -520,4 +521,45 @@ fn iterator_pseudo_clamp_wraps() {
 #[test]
 fn iterator_saturates() {
     assert_eq!(clamp_program(IteratorClamp::Saturate), [250 >> 3, 31, 31]);
+}
+
+// --- FBI graphics reset and the buffers: GraphicsReset ----------------------------------
+
+/// After the init (buffer 0 black, buffer 1 cleared to 0x101030 and back), a swap makes
+/// buffer 1 the front. Then `fbiInit0` is written with bit 1 (graphics reset) set and
+/// cleared again. Returns the front buffer's pixel at (8, 8) before and after.
+fn graphics_reset_program(graphics_reset: GraphicsReset) -> [u16; 2] {
+    let mut p = board(
+        PixelProfile {
+            graphics_reset,
+            ..Default::default()
+        },
+        TexelProfile::default(),
+    );
+    p.write(addr::SWAPBUFFER_CMD, 0);
+    let before = p.read_pixel(Buffer::Front, 8, 8);
+    p.write(addr::FBI_INIT0, 0x3);
+    p.write(addr::FBI_INIT0, 0x1);
+    [before, p.read_pixel(Buffer::Front, 8, 8)]
+}
+
+/// `GraphicsReset::KeepsBuffers` (MAME, DOSBox Staging; default): buffer 1 stays the
+/// front buffer.
+#[test]
+fn graphics_reset_keeps_buffers() {
+    let fill = rgb565_truncated(0x10, 0x10, 0x30);
+    assert_eq!(
+        graphics_reset_program(GraphicsReset::KeepsBuffers),
+        [fill, fill]
+    );
+}
+
+/// `GraphicsReset::ResetsBuffers` (86Box): buffer 0, still black, is the front again.
+#[test]
+fn graphics_reset_resets_buffers() {
+    let fill = rgb565_truncated(0x10, 0x10, 0x30);
+    assert_eq!(
+        graphics_reset_program(GraphicsReset::ResetsBuffers),
+        [fill, 0]
+    );
 }

@@ -22,8 +22,8 @@ use pixelfx::fog::{
 };
 use pixelfx::profile::{
     AlphaTestInput, AuxWrite, ClipRightEdge, DitherMatrix2x2, EdgeRounding, FastfillDither,
-    FloatOverflow, IteratorClamp, LfbOrdering, LfbWordSwap, OverrideTexel, ParamOrigin, PatternRow,
-    StippleRotate, SubpixelZ, WFloatEdges, ZAlphaByte,
+    FloatOverflow, GraphicsReset, IteratorClamp, LfbOrdering, LfbWordSwap, OverrideTexel,
+    ParamOrigin, PatternRow, StippleRotate, SubpixelZ, WFloatEdges, ZAlphaByte,
 };
 use texelfx::{
     A8Expansion, BilinearPrecision, ChainModel, CoordRounding, DecalInvert, DetailRule,
@@ -129,6 +129,11 @@ impl Reference {
                     IteratorClamp::PseudoClamp,
                     IteratorClamp::PseudoClamp,
                     IteratorClamp::Saturate,
+                ),
+                graphics_reset: r.pick(
+                    GraphicsReset::KeepsBuffers,
+                    GraphicsReset::KeepsBuffers,
+                    GraphicsReset::ResetsBuffers,
                 ),
                 fog: FogProfile {
                     difference: r.pick(

@@ -11,7 +11,7 @@ use sst1_regs::{addr, ColorBuffer, FbiInit1, FbiInit2, FbiInit3, FbzMode, VideoD
 
 use crate::fb::FrameBuffer;
 use crate::params::TriangleParams;
-use crate::profile::PixelProfile;
+use crate::profile::{GraphicsReset, PixelProfile};
 use crate::stats::Stats;
 
 /// Work a register write asks the board to do.
@@ -140,6 +140,11 @@ impl Fbi {
                 // Bit 1: FBI graphics reset clears the counters (MAME, DOSBox Staging).
                 if value & 2 != 0 {
                     self.stats.clear_hardware();
+                    if self.profile.graphics_reset == GraphicsReset::ResetsBuffers {
+                        // Source: 86Box `voodoo_writel`, FBIINIT0_GRAPHICS_RESET.
+                        self.fb.front = 0;
+                        self.fb.back = 1;
+                    }
                 }
                 self.recompute_layout();
             }

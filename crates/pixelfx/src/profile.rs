@@ -130,6 +130,18 @@ pub enum StippleRotate {
     PerTriangle,
 }
 
+/// What `fbiInit0` bit 1 (FBI graphics reset) does besides clearing the statistics
+/// counters.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum GraphicsReset {
+    /// The colour buffers keep their front/back roles (MAME, DOSBox Staging).
+    #[default]
+    KeepsBuffers,
+    /// Buffer 0 becomes the front buffer and buffer 1 the back one (86Box; its source
+    /// doubts that the chip does this).
+    ResetsBuffers,
+}
+
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(default)]
@@ -151,6 +163,7 @@ pub struct PixelProfile {
     pub z_alpha: ZAlphaByte,
     pub stipple_rotate: StippleRotate,
     pub iterator_clamp: IteratorClamp,
+    pub graphics_reset: GraphicsReset,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,
 }
