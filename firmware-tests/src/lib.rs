@@ -368,6 +368,12 @@ impl Triangle {
         }
     }
 
+    /// [`Triangle::flat`] over the corner (0, 0), (40, 0), (0, 40), the triangle most
+    /// programs here draw.
+    pub fn corner(argb: u32) -> Self {
+        Self::flat([(0, 0), (40, 0), (0, 40)], argb)
+    }
+
     /// The value for `triangleCMD`: the sign of the area in bit 31 (spec 5.15: vertices
     /// sorted by Y, `AREA = (dxAB * dyBC - dxBC * dyAB) / 2`, bit 31 set for negative).
     pub fn area_sign(&self) -> u32 {

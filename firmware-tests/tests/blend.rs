@@ -28,7 +28,7 @@ fn blended(factors: (u32, u32)) -> u16 {
         alpha::BLEND | alpha::rgb_factors(factors.0, factors.1),
     );
     let argb = SRC_ALPHA << 24 | SRC[0] << 16 | SRC[1] << 8 | SRC[2];
-    triangle_fixed(&mut p, &Triangle::flat([(0, 0), (40, 0), (0, 40)], argb));
+    triangle_fixed(&mut p, &Triangle::corner(argb));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 
@@ -118,10 +118,7 @@ fn blend_alpha_channel_into_alpha_planes() {
             addr::ALPHA_MODE,
             alpha::BLEND | alpha::rgb_factors(4, 0) | src_a << 16 | dst_a << 20,
         );
-        triangle_fixed(
-            &mut p,
-            &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0x80c8_6432),
-        );
+        triangle_fixed(&mut p, &Triangle::corner(0x80c8_6432));
         assert_eq!(p.read_aux(4, 4), want, "alpha factors {src_a} {dst_a}");
         assert_eq!(
             p.read_pixel(Buffer::Back, 4, 4),
@@ -143,10 +140,7 @@ fn alpha_test_functions_at_the_reference() {
         let mut p = Emulator::booted();
         fastfill(&mut p, 0, 0xffff);
         p.write(addr::ALPHA_MODE, alpha::test(f) | alpha::reference(0x80));
-        triangle_fixed(
-            &mut p,
-            &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0x80ff_ffff),
-        );
+        triangle_fixed(&mut p, &Triangle::corner(0x80ff_ffff));
         drawn.push(p.read_pixel(Buffer::Back, 4, 4) == 0xffff);
     }
     assert_eq!(drawn, [false, false, true, true, false, false, true, true]);

@@ -42,7 +42,7 @@ fn triangle_register_remap() {
     let mut p = Emulator::booted();
     p.write(addr::FBI_INIT3, 0x77de_4001);
     p.write(addr::FBZ_MODE, BASE | fbz::DEPTH | fbz::depth_function(7));
-    let mut t = Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000);
+    let mut t = Triangle::corner(0xff00_0000);
     t.z = firmware_tests::Param::flat(0x1234 << 12);
     triangle_fixed(&mut p, &t); // normal map: green 0, depth 0x1234
     const REMAP: u32 = 1 << 21;
@@ -131,10 +131,7 @@ fn reserved_offsets_are_harmless() {
 #[test]
 fn status_reports_idle_after_commands() {
     let mut p = Emulator::booted();
-    triangle_fixed(
-        &mut p,
-        &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xffff_ffff),
-    );
+    triangle_fixed(&mut p, &Triangle::corner(0xffff_ffff));
     assert!(wait_idle(&mut p, 100));
     let s = p.read(addr::STATUS);
     assert_eq!(s & 0x3f, 0x3f);

@@ -19,7 +19,7 @@ fn board(aux: u32, mode: u32) -> Emulator {
 
 /// Draw white with constant Z (16-bit) and W (2.30), read (4, 4): (colour, aux).
 fn draw(p: &mut Emulator, z: i32, w: i32) -> (u16, u16) {
-    let mut t = Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xffff_ffff);
+    let mut t = Triangle::corner(0xffff_ffff);
     t.z = Param::flat(z << 12);
     t.w = Param::flat(w);
     triangle_fixed(p, &t);
@@ -137,7 +137,7 @@ fn wbuffer_writes_float_depth() {
 #[test]
 fn iterated_z_along_a_row() {
     let mut p = board(0, BASE | fbz::DEPTH | fbz::depth_function(ALWAYS));
-    let mut t = Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xffff_ffff);
+    let mut t = Triangle::corner(0xffff_ffff);
     t.z = Param {
         start: 0x1000 << 12,
         dx: 0x180 << 12,

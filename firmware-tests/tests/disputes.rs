@@ -27,10 +27,6 @@ fn board(pixel: PixelProfile) -> Emulator {
     })
 }
 
-fn flat(argb: u32) -> Triangle {
-    Triangle::flat([(0, 0), (40, 0), (0, 40)], argb)
-}
-
 // --- scan conversion: EdgeRounding ----------------------------------------------------
 
 /// A triangle whose left edge lies at x = -0.75: MAME rounds it to -1 (floor), DOSBox
@@ -41,7 +37,7 @@ fn edge_rounding_program(pixel: PixelProfile) -> u32 {
     p.write(addr::NOP_CMD, 1);
     let t = Triangle {
         vertices: [(-12, 0), (160, 0), (-12, 64)],
-        ..flat(0xffff_ffff)
+        ..Triangle::corner(0xffff_ffff)
     };
     triangle_fixed(&mut p, &t);
     p.read(addr::FBI_PIXELS_IN)
@@ -79,7 +75,7 @@ fn wfloat_program(pixel: PixelProfile) -> u16 {
         addr::FBZ_MODE,
         BASE | fbz::DEPTH | fbz::depth_function(7) | fbz::WBUFFER,
     );
-    let mut t = flat(0xffff_ffff);
+    let mut t = Triangle::corner(0xffff_ffff);
     t.w = Param::flat(0x4000);
     triangle_fixed(&mut p, &t);
     p.read_aux(4, 4)
@@ -112,7 +108,7 @@ fn clip_right_program(pixel: PixelProfile) -> (u16, u16) {
     let mut p = board(pixel);
     fastfill(&mut p, 0, 0xffff);
     set_clip(&mut p, 0, 20, 0, 480);
-    triangle_fixed(&mut p, &flat(0xffff_ffff));
+    triangle_fixed(&mut p, &Triangle::corner(0xffff_ffff));
     (
         p.read_pixel(Buffer::Back, 18, 4),
         p.read_pixel(Buffer::Back, 19, 4),
@@ -145,7 +141,7 @@ fn clip_right_drop_last_column() {
 /// reach the aux buffer (0xffff after the init)?
 fn aux_write_program(pixel: PixelProfile) -> u16 {
     let mut p = board(pixel);
-    let mut t = flat(0xffff_ffff);
+    let mut t = Triangle::corner(0xffff_ffff);
     t.z = Param::flat(0x1234 << 12);
     triangle_fixed(&mut p, &t);
     p.read_aux(4, 4)
@@ -177,7 +173,7 @@ fn aux_write_needs_depth_or_alpha_planes() {
 fn dither_2x2_program(pixel: PixelProfile) -> [[u16; 2]; 2] {
     let mut p = board(pixel);
     p.write(addr::FBZ_MODE, BASE | fbz::DITHER | fbz::DITHER_2X2);
-    triangle_fixed(&mut p, &flat(0xff85_413c));
+    triangle_fixed(&mut p, &Triangle::corner(0xff85_413c));
     std::array::from_fn(|y| {
         std::array::from_fn(|x| p.read_pixel(Buffer::Back, 4 + x as u32, 4 + y as u32))
     })
@@ -229,7 +225,7 @@ fn fog_program(
     let [r, g, b] = fog_colour.map(|c| c as u32);
     p.write(addr::FOG_COLOR, r << 16 | g << 8 | b);
     p.write(addr::FOG_TABLE + 9 * 4, 0x6010_4080); // entries 18 (0x40, +0x80), 19 (0x60)
-    let mut t = flat(argb);
+    let mut t = Triangle::corner(argb);
     t.z = Param::flat(z << 12);
     t.w = Param::flat(w);
     triangle_fixed(&mut p, &t);
@@ -352,7 +348,7 @@ fn fog_table_depth_program(table_depth: FogTableDepth) -> u16 {
     p.write(addr::FOG_MODE, fog::ENABLE);
     p.write(addr::FOG_COLOR, 0x00f0_c864);
     p.write(addr::FOG_TABLE + 9 * 4, 0x6010_4080);
-    let mut t = flat(0xff28_643c);
+    let mut t = Triangle::corner(0xff28_643c);
     t.w = Param::flat(0x02c0_0000);
     triangle_fixed(&mut p, &t);
     p.read_pixel(Buffer::Back, 4, 4)
@@ -384,7 +380,7 @@ fn fog_both_program(both_sources: FogBothSources) -> u16 {
     });
     p.write(addr::FOG_MODE, fog::ENABLE | fog::ALPHA | fog::Z);
     p.write(addr::FOG_COLOR, 0x00f0_c864);
-    let mut t = flat(0xff28_643c);
+    let mut t = Triangle::corner(0xff28_643c);
     t.z = Param::flat(0x8000 << 12);
     triangle_fixed(&mut p, &t);
     p.write(addr::F_START_W, 64.0f32.to_bits());
@@ -420,7 +416,7 @@ fn blended_pixel(blend: BlendProfile, fbz_extra: u32, alpha: u32) -> u16 {
     fastfill(&mut p, 0x0080_8080, 0xffff);
     p.write(addr::FBZ_MODE, BASE | fbz_extra);
     p.write(addr::ALPHA_MODE, alpha::BLEND | alpha::rgb_factors(1, 5));
-    triangle_fixed(&mut p, &flat(alpha << 24 | 0x00c8_6432));
+    triangle_fixed(&mut p, &Triangle::corner(alpha << 24 | 0x00c8_6432));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 
@@ -542,7 +538,7 @@ fn saturate_program(saturate: SaturateOperand) -> u16 {
     p.write(addr::FBZ_MODE, BASE | fbz::ALPHA_PLANES);
     fastfill(&mut p, 0x0080_8080, 0x30);
     p.write(addr::ALPHA_MODE, alpha::BLEND | alpha::rgb_factors(15, 0));
-    triangle_fixed(&mut p, &flat(0x60c8_6432));
+    triangle_fixed(&mut p, &Triangle::corner(0x60c8_6432));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 

@@ -31,10 +31,6 @@ fn board(pixel: PixelProfile) -> Emulator {
     })
 }
 
-fn flat(argb: u32) -> Triangle {
-    Triangle::flat([(0, 0), (40, 0), (0, 40)], argb)
-}
-
 // --- dither row with the Y origin at the bottom: PatternRow ---------------------------
 
 /// A colour whose channels round differently across the dither matrix.
@@ -61,7 +57,7 @@ fn dithered_row(row: usize) -> [u16; 4] {
 
 fn dithered_triangle(p: &mut Emulator) {
     let (r, g, b) = DITHERED;
-    triangle_fixed(p, &flat(0xff00_0000 | r << 16 | g << 8 | b));
+    triangle_fixed(p, &Triangle::corner(0xff00_0000 | r << 16 | g << 8 | b));
 }
 
 /// `PatternRow::Screen` (MAME, 86Box; default): the triangle's dither row is the
@@ -126,7 +122,7 @@ fn float_overflow_program(float_overflow: FloatOverflow) -> (u16, [u16; 3]) {
         float_overflow,
         ..Default::default()
     });
-    let t = flat(0xff00_0000);
+    let t = Triangle::corner(0xff00_0000);
     triangle_fixed(&mut p, &t);
     p.write(addr::F_START_R, OVERFLOWING);
     p.write(addr::F_D_Z_DX, OVERFLOWING);
@@ -181,7 +177,7 @@ fn subpixel_z_program(subpixel_z: SubpixelZ) -> [u16; 2] {
     });
     p.write(addr::FBZ_COLOR_PATH, color_path::PARAM_ADJUST);
     p.write(addr::FBZ_MODE, BASE);
-    let t = flat(0xff00_0000);
+    let t = Triangle::corner(0xff00_0000);
     for (reg, v) in [(addr::VERTEX_BX, 40 << 4), (addr::VERTEX_CY, 40 << 4)] {
         p.write(reg, v);
     }
@@ -220,7 +216,7 @@ fn alpha_test_program(alpha_test_input: AlphaTestInput) -> (u16, u32) {
     p.write(addr::FBZ_COLOR_PATH, 1 << 17);
     p.write(addr::ALPHA_MODE, alpha::test(4) | alpha::reference(0x40));
     p.write(addr::NOP_CMD, 1);
-    triangle_fixed(&mut p, &flat(0x80c8_6432));
+    triangle_fixed(&mut p, &Triangle::corner(0x80c8_6432));
     (
         p.read_pixel(Buffer::Back, 4, 4),
         p.read(addr::FBI_AFUNC_FAIL),
@@ -254,7 +250,7 @@ fn alpha_test_input_a_other() {
 fn triangle_pixels() -> u32 {
     let mut p = Emulator::booted();
     p.write(addr::NOP_CMD, 1);
-    triangle_fixed(&mut p, &flat(0xffff_ffff));
+    triangle_fixed(&mut p, &Triangle::corner(0xffff_ffff));
     p.read(addr::FBI_PIXELS_OUT)
 }
 
@@ -364,7 +360,7 @@ fn texel_program_with(
     ] {
         p.write(reg, v);
     }
-    triangle_fixed(&mut p, &flat(0xff00_0000));
+    triangle_fixed(&mut p, &Triangle::corner(0xff00_0000));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 

@@ -179,7 +179,7 @@ fn textured_pixel(p: &mut Emulator, cp: u32, dsdx: u32) -> u16 {
     ] {
         p.write(reg, v);
     }
-    triangle_fixed(p, &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff20_3040));
+    triangle_fixed(p, &Triangle::corner(0xff20_3040));
     p.read_pixel(Buffer::Back, 4, 4)
 }
 
@@ -323,7 +323,7 @@ fn z_alpha_program(z_alpha: ZAlphaByte) -> (u16, u32, u32) {
     p.write(addr::FBZ_MODE, BASE);
     p.write(addr::FBZ_COLOR_PATH, 2 << 5 | 1 << 17 | 1 << 23);
     p.write(addr::ALPHA_MODE, alpha::test(4) | alpha::reference(0x80));
-    let t = Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff20_3040);
+    let t = Triangle::corner(0xff20_3040);
     // triangle_fixed writes start Z 0: set Z afterwards and draw again, counting only that.
     triangle_fixed(&mut p, &t);
     p.write(addr::START_Z, 0x040c_0000);
@@ -396,10 +396,7 @@ fn stipple_program(stipple_rotate: StippleRotate) -> ([u16; 4], u32) {
     p.write(addr::FBZ_MODE, BASE | 1 << 2);
     p.write(addr::STIPPLE, 1 << 30);
     p.write(addr::NOP_CMD, 1);
-    triangle_fixed(
-        &mut p,
-        &Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff20_3040),
-    );
+    triangle_fixed(&mut p, &Triangle::corner(0xff20_3040));
     (
         std::array::from_fn(|x| p.read_pixel(Buffer::Back, x as u32, 2)),
         p.read(addr::FBI_PIXELS_OUT),
@@ -499,7 +496,7 @@ fn clamp_program(iterator_clamp: IteratorClamp) -> [u16; 3] {
     );
     p.write(addr::FBZ_MODE, BASE);
     p.write(addr::FBZ_COLOR_PATH, 0);
-    let t = Triangle::flat([(0, 0), (40, 0), (0, 40)], 0xff00_0000);
+    let t = Triangle::corner(0xff00_0000);
     triangle_fixed(&mut p, &t);
     p.write(addr::START_R, 250 << 12);
     p.write(addr::D_R_DX, 4 << 12);

@@ -25,7 +25,7 @@ fn expected_cell(r: u32, g: u32, b: u32) -> [[u16; 4]; 4] {
 
 fn flat_triangle(p: &mut Emulator, (r, g, b): (u32, u32, u32)) {
     let argb = 0xff00_0000 | r << 16 | g << 8 | b;
-    triangle_fixed(p, &Triangle::flat([(0, 0), (40, 0), (0, 40)], argb));
+    triangle_fixed(p, &Triangle::corner(argb));
 }
 
 /// A flat colour (0x85, 0x41, 0x3c) through the 4x4 ordered dither gives one exact

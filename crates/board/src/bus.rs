@@ -3,6 +3,7 @@
 
 use pixelfx::{Command, NoTexture};
 use sst1_regs::{addr, map, RegisterBus};
+use texelfx::ChainModel;
 
 use crate::chain::Chain;
 use crate::diagnostics::Diagnostic;
@@ -93,8 +94,13 @@ impl Board {
             for t in &mut self.tmus {
                 t.begin_triangle();
             }
+            let model = self
+                .tmus
+                .first()
+                .map_or(ChainModel::Full, |t| t.profile().chain);
             self.fbi.draw_triangle(&mut Chain {
                 tmus: &mut self.tmus,
+                model,
             });
         } else {
             self.fbi.draw_triangle(&mut NoTexture);

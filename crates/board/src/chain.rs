@@ -8,13 +8,15 @@ use texelfx::{ChainModel, Tmu};
 /// The TMUs taking part in a triangle, upstream last.
 pub struct Chain<'a> {
     pub tmus: &'a mut [Tmu],
+    /// How they combine (TMU 0's profile, read once per triangle).
+    pub model: ChainModel,
 }
 
 impl TexelSource for Chain<'_> {
     #[inline]
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
         match self.tmus {
-            [t0, rest @ ..] if t0.profile().chain == ChainModel::Box86 => {
+            [t0, rest @ ..] if self.model == ChainModel::Box86 => {
                 box86_texel(t0, rest.first_mut(), dx, dy, x, y)
             }
             _ => {

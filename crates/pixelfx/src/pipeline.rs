@@ -221,7 +221,7 @@ impl Fbi {
             // Z[27:20], the high byte of the clamped 16-bit Z (spec 5.16; MAME, 86Box).
             // DOSBox Staging takes the low byte; `color_combine` shows MAME and 86Box agree
             // against it.
-            z_alpha: match self.profile().z_alpha {
+            z_alpha: match profile.z_alpha {
                 ZAlphaByte::High => (z16 >> 8) as u8,
                 ZAlphaByte::Low => z16 as u8,
             },

@@ -92,11 +92,14 @@ impl Fbi {
         );
         let mode = FbzMode(value(ZM, st.mode.0));
         let flip = mode.y_origin();
-        let origin = self.profile().param_origin;
+        let profile = self.profile();
+        let origin = profile.param_origin;
         let (ax, ay) = (origin.pixel(self.params.ax), origin.pixel(self.params.ay));
         let params = self.params;
-        let profile = self.profile();
-        let per_triangle = profile.stipple_rotate == StippleRotate::PerTriangle;
+        // Only rotate-mode stipple reads the per-triangle copy.
+        let per_triangle = profile.stipple_rotate == StippleRotate::PerTriangle
+            && mode.enable_stipple()
+            && !mode.enable_stipple_pattern();
         // StippleRotate::PerTriangle: the triangle's copy, and each row's values.
         let mut carried = st.stipple;
         let mut row_stipple: Vec<u32> = Vec::new();
