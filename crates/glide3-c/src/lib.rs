@@ -33,12 +33,15 @@ use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
 use sst1_board::{Board, BoardConfig, BufferKind};
 use sst1_regs::RegisterBus;
 use sst1_trace::{encode_binary, write_text, DumpBuffer, Recorder};
-use std::cell::RefCell;
+use std::borrow::Cow;
+use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
-use std::io::Write;
+use std::io::{Read, Write};
+use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::rc::Rc;
+use std::sync::{Mutex, PoisonError};
 
 mod window;
 
@@ -159,34 +162,178 @@ impl Recording {
     }
 }
 
-/// Host-side stand-in for the mapped LFB while a lock is held.
+/// Words in an LFB shadow: 1024 rows of 4096 bytes.
+const LFB_WORDS: usize = 1024 * 1024;
+
+/// Host-side stand-in for the mapped LFB while a lock is held. The two shadows (read
+/// and write lock) are allocated once per process and never freed, so the pointer
+/// `grLfbLock` hands out stays valid whatever the program does after (a refused unlock,
+/// a second lock, `grGlideShutdown`): a stale pointer can only reach these words.
 struct LfbShadow {
-    words: Vec<u32>,
-    initial: Vec<u32>,
-    write: bool,
+    /// What the program sees through `GrLfbInfo_t::lfbPtr`.
+    words: Box<[u32]>,
+    /// The words as the lock filled them (write locks send what changed).
+    initial: Box<[u32]>,
 }
 
-/// Everything one process's Glide session holds.
+impl LfbShadow {
+    fn new() -> Self {
+        Self {
+            words: vec![0; LFB_WORDS].into_boxed_slice(),
+            initial: vec![0; LFB_WORDS].into_boxed_slice(),
+        }
+    }
+}
+
+/// Everything one Glide session (`grGlideInit` to `grGlideShutdown`) holds.
 struct Ctx {
     glide: Glide,
     board: SharedBoard,
     recording: Option<Recording>,
-    states: Saved<GlideState>,
-    layouts: Saved<VertexLayout>,
-    lfb: [Option<LfbShadow>; 2],
     png: Option<(String, Option<Vec<u32>>)>,
     window: Option<window::LiveWindow>,
 }
 
-thread_local! {
-    static CTX: RefCell<Option<Ctx>> = const { RefCell::new(None) };
+/// The process's Glide state: the session, if one is open, and the LFB shadows, which
+/// outlive sessions.
+struct Process {
+    session: Option<Ctx>,
+    lfb: [Option<LfbShadow>; 2],
 }
 
-/// Words in the LFB shadow: 1024 rows of 4096 bytes.
-const LFB_WORDS: usize = 1024 * 1024;
+/// [`Process`] behind the lock that makes Glide's state per process, as in 3dfx's
+/// library: any thread may call, one at a time.
+struct Shared(Process);
 
+// SAFETY: the only non-`Send` parts of a `Process` are the `Rc`s that share the board
+// and the recorder between the Glide context, the C layer and the recorder, and the
+// boxed bus and error callback of `Glide`. Every clone of those `Rc`s lives inside the
+// same `Process` (none is handed out), the error callback captures nothing, and the
+// `Process` is only reached through `PROCESS`'s mutex, so at any time one thread at most
+// touches any of them: moving the whole tree between threads is sound.
+unsafe impl Send for Shared {}
+
+static PROCESS: Mutex<Shared> = Mutex::new(Shared(Process {
+    session: None,
+    lfb: [None, None],
+}));
+
+/// What `grErrorSetCallback` asked for. Process-wide, and kept from before `grGlideInit`
+/// to after `grGlideShutdown`.
+#[derive(Clone, Copy)]
+enum ErrorSink {
+    /// Never set: errors are dropped.
+    Unset,
+    /// Set to NULL: errors go to stderr.
+    Stderr,
+    /// The program's callback.
+    Program(unsafe extern "C" fn(*const c_char, FxBool)),
+}
+
+static ERROR_SINK: Mutex<ErrorSink> = Mutex::new(ErrorSink::Unset);
+
+/// Most errors one entry point queues for delivery; later ones are counted.
+const MAX_PENDING: usize = 64;
+
+thread_local! {
+    /// Errors raised during this thread's current entry point, delivered when it
+    /// returns, with no lock held, so a callback may call Glide again.
+    static PENDING: RefCell<(Vec<(String, bool)>, usize)> = const { RefCell::new((Vec::new(), 0)) };
+    /// How deep this thread is in entry points (one calls another for some calls).
+    static DEPTH: Cell<u32> = const { Cell::new(0) };
+    /// Whether this thread holds `PROCESS` (taking it again would deadlock).
+    static HOLDING: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Queues an error for the program's callback.
+fn raise(msg: String, fatal: bool) {
+    PENDING.with(|p| {
+        let (list, dropped) = &mut *p.borrow_mut();
+        if list.len() < MAX_PENDING {
+            list.push((msg, fatal));
+        } else {
+            *dropped += 1;
+        }
+    });
+}
+
+/// Hands this thread's queued errors to the program's callback (or stderr).
+fn deliver_errors() {
+    let (mut list, dropped) = PENDING.with(|p| std::mem::take(&mut *p.borrow_mut()));
+    if dropped > 0 {
+        list.push((format!("glide3: {dropped} more errors not reported"), false));
+    }
+    if list.is_empty() {
+        return;
+    }
+    let sink = *ERROR_SINK.lock().unwrap_or_else(PoisonError::into_inner);
+    for (msg, fatal) in list {
+        match sink {
+            ErrorSink::Unset => {}
+            ErrorSink::Stderr => eprintln!("glide3: {msg}"),
+            ErrorSink::Program(cb) => {
+                let s = CString::new(msg.replace('\0', " ")).unwrap_or_default();
+                // SAFETY: a C function pointer registered by the program, called with a
+                // NUL-terminated string that outlives the call. No lock is held, so the
+                // callback may call any Glide function.
+                unsafe { cb(s.as_ptr(), FxBool::from(fatal)) };
+            }
+        }
+    }
+}
+
+/// The text of a panic's payload.
+fn panic_text(payload: &(dyn std::any::Any + Send)) -> &str {
+    payload
+        .downcast_ref::<&str>()
+        .copied()
+        .or_else(|| payload.downcast_ref::<String>().map(String::as_str))
+        .unwrap_or("panic")
+}
+
+/// The body of every exported function: runs `body`, turns a panic into an error
+/// reported as `CALL: internal error: ...` (and the call's default result), and, when
+/// the outermost entry point returns, delivers the errors raised during it. No panic
+/// crosses the C boundary.
+fn entry<R: Default>(call: &str, body: impl FnOnce() -> R) -> R {
+    DEPTH.set(DEPTH.get() + 1);
+    let result = catch_unwind(AssertUnwindSafe(body)).unwrap_or_else(|payload| {
+        raise(
+            format!("{call}: internal error: {}", panic_text(&*payload)),
+            false,
+        );
+        R::default()
+    });
+    DEPTH.set(DEPTH.get() - 1);
+    if DEPTH.get() == 0 {
+        deliver_errors();
+    }
+    result
+}
+
+/// Clears [`HOLDING`] when the process lock is let go, unwinding included.
+struct Holding;
+
+impl Drop for Holding {
+    fn drop(&mut self) {
+        HOLDING.set(false);
+    }
+}
+
+/// Runs `f` with the process's state locked. Call inside [`entry`].
+fn with_process<R>(f: impl FnOnce(&mut Process) -> R) -> R {
+    // Re-entering would deadlock; entry() turns the panic into an error.
+    assert!(!HOLDING.get(), "Glide re-entered while it holds its state");
+    // A panic while locked poisons the mutex; the state stays memory-safe, so go on.
+    let mut guard = PROCESS.lock().unwrap_or_else(PoisonError::into_inner);
+    HOLDING.set(true);
+    let _holding = Holding;
+    f(&mut guard.0)
+}
+
+/// Runs `f` on the open session; the default result when none is open.
 fn with<R: Default>(f: impl FnOnce(&mut Ctx) -> R) -> R {
-    CTX.with(|c| c.borrow_mut().as_mut().map(f).unwrap_or_default())
+    with_process(|p| p.session.as_mut().map(f).unwrap_or_default())
 }
 
 fn board_config() -> BoardConfig {
@@ -296,64 +443,71 @@ unsafe fn vertex(layout: &VertexLayout, p: *const c_void) -> Vec<f32> {
 /// `grGlideInit`.
 #[no_mangle]
 pub extern "C" fn grGlideInit() {
-    CTX.with(|c| {
-        if c.borrow().is_some() {
-            return;
-        }
-        let cfg = board_config();
-        let board = SharedBoard(Rc::new(RefCell::new(Board::new(cfg))));
-        let recording = Recording::from_env(&board, cfg);
-        let bus = match &recording {
-            Some(r) => Bus::Recorded(r.recorder.clone()),
-            None => Bus::Direct(board.clone()),
-        };
-        let glide = Glide::init(
-            Box::new(bus),
-            BoardInfo::new(cfg.fbi_mb, cfg.tmus, cfg.tmu_mb),
-        );
-        *c.borrow_mut() = Some(Ctx {
-            glide,
-            board,
-            recording,
-            states: Saved::default(),
-            layouts: Saved::default(),
-            lfb: [None, None],
-            png: png_setting(),
-            window: window::LiveWindow::from_env(),
-        });
-    });
+    entry("grGlideInit", || {
+        with_process(|p| {
+            if p.session.is_some() {
+                return;
+            }
+            let cfg = board_config();
+            let board = SharedBoard(Rc::new(RefCell::new(Board::new(cfg))));
+            let recording = Recording::from_env(&board, cfg);
+            let bus = match &recording {
+                Some(r) => Bus::Recorded(r.recorder.clone()),
+                None => Bus::Direct(board.clone()),
+            };
+            let mut glide = Glide::init(
+                Box::new(bus),
+                BoardInfo::new(cfg.fbi_mb, cfg.tmus, cfg.tmu_mb),
+            );
+            glide.set_error_callback(Box::new(|msg: &str, fatal: bool| {
+                raise(msg.to_owned(), fatal)
+            }));
+            p.session = Some(Ctx {
+                glide,
+                board,
+                recording,
+                png: png_setting(),
+                window: window::LiveWindow::from_env(),
+            });
+        })
+    })
 }
 
 /// `grGlideShutdown`.
 #[no_mangle]
 pub extern "C" fn grGlideShutdown() {
-    CTX.with(|c| {
-        if let Some(ctx) = c.borrow_mut().take() {
-            drop(ctx.glide.shutdown());
-            if let Some(r) = &ctx.recording {
-                if let Err(e) = r.write() {
-                    eprintln!("glide3: cannot write {}: {e}", r.path.display());
-                }
+    entry("grGlideShutdown", || {
+        let Some(ctx) = with_process(|p| p.session.take()) else {
+            return;
+        };
+        drop(ctx.glide.shutdown());
+        if let Some(r) = &ctx.recording {
+            if let Err(e) = r.write() {
+                eprintln!("glide3: cannot write {}: {e}", r.path.display());
             }
         }
-    });
+    })
 }
 
 /// `grGlideGetVersion`: copies "3.01.0001" into an 80-byte buffer.
 #[no_mangle]
 pub unsafe extern "C" fn grGlideGetVersion(version: *mut c_char) {
-    if version.is_null() {
-        return;
-    }
-    let v = b"3.01.0001\0";
-    // SAFETY: the caller provides 80 bytes.
-    unsafe { std::ptr::copy_nonoverlapping(v.as_ptr() as *const c_char, version, v.len()) };
+    entry("grGlideGetVersion", || {
+        if version.is_null() {
+            return;
+        }
+        let v = b"3.01.0001\0";
+        // SAFETY: the caller provides 80 bytes.
+        unsafe { std::ptr::copy_nonoverlapping(v.as_ptr() as *const c_char, version, v.len()) };
+    })
 }
 
 /// `grSstSelect`.
 #[no_mangle]
 pub extern "C" fn grSstSelect(which: c_int) {
-    with(|c| c.glide.sst_select(which));
+    entry("grSstSelect", || {
+        with(|c| c.glide.sst_select(which));
+    })
 }
 
 /// `grSstWinOpen`: returns a non-zero context on success.
@@ -367,50 +521,52 @@ pub extern "C" fn grSstWinOpen(
     ncolor: c_int,
     naux: c_int,
 ) -> u32 {
-    with(|c| {
-        u32::from(c.glide.win_open(
-            res as u32,
-            refresh as u32,
-            format as u32,
-            origin as u32,
-            ncolor,
-            naux,
-        ))
+    entry("grSstWinOpen", || {
+        with(|c| {
+            u32::from(c.glide.win_open(
+                res as u32,
+                refresh as u32,
+                format as u32,
+                origin as u32,
+                ncolor,
+                naux,
+            ))
+        })
     })
 }
 
 /// `grSstWinClose`.
 #[no_mangle]
 pub extern "C" fn grSstWinClose(_context: u32) -> FxBool {
-    with(|c| FxBool::from(c.glide.win_close()))
+    entry("grSstWinClose", || {
+        with(|c| FxBool::from(c.glide.win_close()))
+    })
 }
 
 /// `grSelectContext`.
 #[no_mangle]
 pub extern "C" fn grSelectContext(context: u32) -> FxBool {
-    FxBool::from(context != 0)
+    entry("grSelectContext", || FxBool::from(context != 0))
 }
 
 /// `grSstOrigin`.
 #[no_mangle]
 pub extern "C" fn grSstOrigin(origin: i32) {
-    with(|c| c.glide.sst_origin(origin as u32));
+    entry("grSstOrigin", || {
+        with(|c| c.glide.sst_origin(origin as u32));
+    })
 }
 
-/// `grErrorSetCallback`.
+/// `grErrorSetCallback`: the callback is the process's, kept across sessions and valid
+/// before `grGlideInit`; NULL sends errors to stderr.
 #[no_mangle]
 pub extern "C" fn grErrorSetCallback(f: ErrorFn) {
-    with(|c| {
-        c.glide
-            .set_error_callback(Box::new(move |msg: &str, fatal: bool| match f {
-                Some(cb) => {
-                    let s = CString::new(msg.replace('\0', " ")).unwrap_or_default();
-                    // SAFETY: a C function pointer registered by the program.
-                    unsafe { cb(s.as_ptr(), FxBool::from(fatal)) };
-                }
-                None => eprintln!("glide3: {msg}"),
-            }));
-    });
+    entry("grErrorSetCallback", || {
+        *ERROR_SINK.lock().unwrap_or_else(PoisonError::into_inner) = match f {
+            Some(cb) => ErrorSink::Program(cb),
+            None => ErrorSink::Stderr,
+        };
+    })
 }
 
 // ----- queries -----------------------------------------------------------------------
@@ -420,28 +576,31 @@ pub extern "C" fn grErrorSetCallback(f: ErrorFn) {
 /// another `plength`, 0 for an unknown selector or a null `params`.
 #[no_mangle]
 pub unsafe extern "C" fn grGet(pname: u32, plength: u32, params: *mut i32) -> u32 {
-    if params.is_null() {
-        return 0;
-    }
-    let mut buf = [0i32; 4];
-    let open = CTX.with(|c| c.borrow().is_some());
-    let n = if !open && pname == GR_NUM_BOARDS {
-        // Valid before grGlideInit (Guide chapter 3; diget.c probes the bus): one board.
-        buf[0] = 1;
-        if plength == 4 {
-            4
-        } else {
-            1
+    entry("grGet", || {
+        if params.is_null() {
+            return 0;
         }
-    } else {
-        with(|c| c.glide.get(pname, plength, &mut buf))
-    };
-    if n == plength {
-        let words = (n as usize / 4).min(4);
-        // SAFETY: the caller provides plength bytes.
-        unsafe { std::ptr::copy_nonoverlapping(buf.as_ptr(), params, words) };
-    }
-    n
+        let mut buf = [0i32; 4];
+        let n = with_process(|p| match p.session.as_mut() {
+            Some(c) => c.glide.get(pname, plength, &mut buf),
+            // Valid before grGlideInit (Guide chapter 3; diget.c probes the bus): one board.
+            None if pname == GR_NUM_BOARDS => {
+                buf[0] = 1;
+                if plength == 4 {
+                    4
+                } else {
+                    1
+                }
+            }
+            None => 0,
+        });
+        if n == plength {
+            let words = (n as usize / 4).min(4);
+            // SAFETY: the caller provides plength bytes.
+            unsafe { std::ptr::copy_nonoverlapping(buf.as_ptr(), params, words) };
+        }
+        n
+    })
 }
 
 /// `grGetString`.
@@ -455,18 +614,18 @@ pub extern "C" fn grGetString(pname: u32) -> *const c_char {
         c"3.01.0001",
         c"ERROR",
     ];
-    let s = glide::get::get_string(pname);
-    STRINGS
-        .iter()
-        .find(|c| c.to_str() == Ok(s))
-        .unwrap_or(&STRINGS[5])
-        .as_ptr()
+    entry("grGetString", || {
+        let s = glide::get::get_string(pname);
+        STRINGS.iter().find(|c| c.to_str() == Ok(s)).copied()
+    })
+    .unwrap_or(STRINGS[5])
+    .as_ptr()
 }
 
 /// `grReset`: statistics counters or the vertex layout (see `Glide::reset`).
 #[no_mangle]
 pub extern "C" fn grReset(what: u32) -> FxBool {
-    with(|c| FxBool::from(c.glide.reset(what)))
+    entry("grReset", || with(|c| FxBool::from(c.glide.reset(what))))
 }
 
 /// `GrResolution`.
@@ -490,99 +649,104 @@ pub unsafe extern "C" fn grQueryResolutions(
     template: *const GrResolution,
     output: *mut GrResolution,
 ) -> i32 {
-    // SAFETY: the caller's template (checked for null).
-    let Some(t) = (unsafe { template.as_ref() }).copied() else {
-        return 0;
-    };
-    let any = |v: i32| u32::try_from(v).ok();
-    let list = with(|c| {
-        c.glide.query_resolutions(
-            any(t.resolution),
-            any(t.refresh),
-            any(t.num_color_buffers),
-            any(t.num_aux_buffers),
-        )
-    });
-    if !output.is_null() {
-        for (i, r) in list.iter().enumerate() {
-            // SAFETY: the caller sized `output` from a previous null-output call.
-            unsafe {
-                output.add(i).write(GrResolution {
-                    resolution: r.resolution as i32,
-                    refresh: r.refresh as i32,
-                    num_color_buffers: r.color_buffers as c_int,
-                    num_aux_buffers: r.aux_buffers as c_int,
-                })
-            };
+    entry("grQueryResolutions", || {
+        // SAFETY: the caller's template (checked for null).
+        let Some(t) = (unsafe { template.as_ref() }).copied() else {
+            return 0;
+        };
+        let any = |v: i32| u32::try_from(v).ok();
+        let list = with(|c| {
+            c.glide.query_resolutions(
+                any(t.resolution),
+                any(t.refresh),
+                any(t.num_color_buffers),
+                any(t.num_aux_buffers),
+            )
+        });
+        if !output.is_null() {
+            for (i, r) in list.iter().enumerate() {
+                // SAFETY: the caller sized `output` from a previous null-output call.
+                unsafe {
+                    output.add(i).write(GrResolution {
+                        resolution: r.resolution as i32,
+                        refresh: r.refresh as i32,
+                        num_color_buffers: r.color_buffers as c_int,
+                        num_aux_buffers: r.aux_buffers as c_int,
+                    })
+                };
+            }
         }
-    }
-    (list.len() * std::mem::size_of::<GrResolution>()) as i32
+        (list.len() * std::mem::size_of::<GrResolution>()) as i32
+    })
 }
 
 /// `guQueryResolutionXYExt` (through `grGetProcAddress`): the size of a resolution.
 /// UNVERIFIED: unknown resolutions give 0 x 0 (3dfx indexes its table unchecked).
 pub unsafe extern "C" fn guQueryResolutionXYExt(res: i32, x: *mut u32, y: *mut u32) {
-    const XY: [(u32, u32); 16] = [
-        (320, 200),
-        (320, 240),
-        (400, 256),
-        (512, 384),
-        (640, 200),
-        (640, 350),
-        (640, 400),
-        (640, 480),
-        (800, 600),
-        (960, 720),
-        (856, 480),
-        (512, 256),
-        (1024, 768),
-        (1280, 1024),
-        (1600, 1200),
-        (400, 300),
-    ];
-    let (w, h) = usize::try_from(res)
-        .ok()
-        .and_then(|i| XY.get(i).copied())
-        .unwrap_or((0, 0));
-    // SAFETY: the caller's output pointers (checked for null).
-    unsafe {
-        if let Some(x) = x.as_mut() {
-            *x = w;
+    entry("guQueryResolutionXYExt", || {
+        const XY: [(u32, u32); 16] = [
+            (320, 200),
+            (320, 240),
+            (400, 256),
+            (512, 384),
+            (640, 200),
+            (640, 350),
+            (640, 400),
+            (640, 480),
+            (800, 600),
+            (960, 720),
+            (856, 480),
+            (512, 256),
+            (1024, 768),
+            (1280, 1024),
+            (1600, 1200),
+            (400, 300),
+        ];
+        let (w, h) = usize::try_from(res)
+            .ok()
+            .and_then(|i| XY.get(i).copied())
+            .unwrap_or((0, 0));
+        // SAFETY: the caller's output pointers (checked for null).
+        unsafe {
+            if let Some(x) = x.as_mut() {
+                *x = w;
+            }
+            if let Some(y) = y.as_mut() {
+                *y = h;
+            }
         }
-        if let Some(y) = y.as_mut() {
-            *y = h;
-        }
-    }
+    })
 }
 
 /// `grGetRegistryOrEnvironmentStringExt` (through `grGetProcAddress`): `getenv`.
 pub unsafe extern "C" fn grGetRegistryOrEnvironmentStringExt(name: *const c_char) -> *mut c_char {
-    if name.is_null() {
-        return std::ptr::null_mut();
-    }
-    // SAFETY: the caller's NUL-terminated name.
-    let key = unsafe { CStr::from_ptr(name) }
-        .to_string_lossy()
-        .into_owned();
-    let Ok(value) = std::env::var(&key) else {
-        return std::ptr::null_mut();
-    };
-    // Kept alive for the process, like the environment string 3dfx returns.
-    thread_local! {
-        static ENV: RefCell<HashMap<String, CString>> = RefCell::new(HashMap::new());
-    }
-    ENV.with(|e| {
-        let mut e = e.borrow_mut();
-        let s = e
+    /// The strings handed out, by name: kept for the process (an entry is never replaced
+    /// or removed), like the environment string 3dfx returns, so a pointer stays valid.
+    static ENV: Mutex<Option<HashMap<String, CString>>> = Mutex::new(None);
+    entry("grGetRegistryOrEnvironmentStringExt", || {
+        if name.is_null() {
+            return None;
+        }
+        // SAFETY: the caller's NUL-terminated name.
+        let key = unsafe { CStr::from_ptr(name) }
+            .to_string_lossy()
+            .into_owned();
+        let value = std::env::var(&key).ok()?;
+        let mut env = ENV.lock().unwrap_or_else(PoisonError::into_inner);
+        let s = env
+            .get_or_insert_with(HashMap::new)
             .entry(key)
             .or_insert_with(|| CString::new(value.replace('\0', "")).unwrap_or_default());
-        s.as_ptr() as *mut c_char
+        Some(s.as_ptr() as *mut c_char)
     })
+    .unwrap_or(std::ptr::null_mut())
 }
 
 /// `grSetNumPendingBuffers` (through `grGetProcAddress`): the number of swaps
 /// `grBufferSwap` lets queue up. Our swaps never wait, so it is accepted and unused.
-pub extern "C" fn grSetNumPendingBuffers(_n: i32) {}
+pub extern "C" fn grSetNumPendingBuffers(_n: i32) {
+    entry("grSetNumPendingBuffers", || {})
+}
 
 /// `GrProc`.
 pub type GrProc = Option<unsafe extern "C" fn() -> c_int>;
@@ -591,26 +755,32 @@ pub type GrProc = Option<unsafe extern "C" fn() -> c_int>;
 /// `_extensionTable`, without the texus2 quantizers); null for any other name.
 #[no_mangle]
 pub unsafe extern "C" fn grGetProcAddress(name: *const c_char) -> GrProc {
-    if name.is_null() {
-        return None;
-    }
-    // SAFETY: the caller's NUL-terminated name.
-    let name = unsafe { CStr::from_ptr(name) }.to_bytes();
-    let p: *const () = match name {
-        b"guQueryResolutionXYExt" => guQueryResolutionXYExt as *const (),
-        b"grGetRegistryOrEnvironmentStringExt" => grGetRegistryOrEnvironmentStringExt as *const (),
-        b"grTexDownloadTableExt" => grTexDownloadTableExt as *const (),
-        b"grSetNumPendingBuffers" => grSetNumPendingBuffers as *const (),
-        _ => return None,
-    };
-    // SAFETY: GrProc is an untyped function pointer; the caller casts it back to the
-    // extension's real signature, as with 3dfx's library.
-    Some(unsafe { std::mem::transmute::<*const (), unsafe extern "C" fn() -> c_int>(p) })
+    entry("grGetProcAddress", || {
+        if name.is_null() {
+            return None;
+        }
+        // SAFETY: the caller's NUL-terminated name.
+        let name = unsafe { CStr::from_ptr(name) }.to_bytes();
+        let p: *const () = match name {
+            b"guQueryResolutionXYExt" => guQueryResolutionXYExt as *const (),
+            b"grGetRegistryOrEnvironmentStringExt" => {
+                grGetRegistryOrEnvironmentStringExt as *const ()
+            }
+            b"grTexDownloadTableExt" => grTexDownloadTableExt as *const (),
+            b"grSetNumPendingBuffers" => grSetNumPendingBuffers as *const (),
+            _ => return None,
+        };
+        // SAFETY: GrProc is an untyped function pointer; the caller casts it back to the
+        // extension's real signature, as with 3dfx's library.
+        Some(unsafe { std::mem::transmute::<*const (), unsafe extern "C" fn() -> c_int>(p) })
+    })
 }
 
 /// `grSplash`: 3dfx draws its animated logo; the emulation shows nothing.
 #[no_mangle]
-pub extern "C" fn grSplash(_x: f32, _y: f32, _w: f32, _h: f32, _frame: u32) {}
+pub extern "C" fn grSplash(_x: f32, _y: f32, _w: f32, _h: f32, _frame: u32) {
+    entry("grSplash", || {})
+}
 
 // ----- state ------------------------------------------------------------------------
 
@@ -620,7 +790,7 @@ macro_rules! forward {
             $(#[$m])*
             #[no_mangle]
             pub extern "C" fn $name($($a: $t),*) {
-                with(|c| c.glide.$method($($e),*));
+                entry(stringify!($name), || with(|c| c.glide.$method($($e),*)));
             }
         )*
     };
@@ -715,144 +885,116 @@ forward! {
 
 /// `grFlush`: nothing is buffered on the host.
 #[no_mangle]
-pub extern "C" fn grFlush() {}
+pub extern "C" fn grFlush() {
+    entry("grFlush", || {})
+}
 
 /// `grFogTable`: 64 entries.
 #[no_mangle]
 pub unsafe extern "C" fn grFogTable(table: *const u8) {
-    if table.is_null() {
-        return;
-    }
-    let mut t = [0u8; 64];
-    // SAFETY: the caller provides 64 entries (GR_FOG_TABLE_ENTRIES).
-    unsafe { std::ptr::copy_nonoverlapping(table, t.as_mut_ptr(), 64) };
-    with(|c| c.glide.fog_table(&t));
+    entry("grFogTable", || {
+        if table.is_null() {
+            return;
+        }
+        let mut t = [0u8; 64];
+        // SAFETY: the caller provides 64 entries (GR_FOG_TABLE_ENTRIES).
+        unsafe { std::ptr::copy_nonoverlapping(table, t.as_mut_ptr(), 64) };
+        with(|c| c.glide.fog_table(&t));
+    })
 }
 
 /// `grLoadGammaTable`.
 #[no_mangle]
 pub unsafe extern "C" fn grLoadGammaTable(n: u32, r: *const u32, g: *const u32, b: *const u32) {
-    if r.is_null() || g.is_null() || b.is_null() {
-        return;
-    }
-    let n = n.min(256) as usize;
-    // SAFETY: the caller provides n entries in each table.
-    let (r, g, b) = unsafe {
-        (
-            std::slice::from_raw_parts(r, n),
-            std::slice::from_raw_parts(g, n),
-            std::slice::from_raw_parts(b, n),
-        )
-    };
-    with(|c| c.glide.load_gamma_table(r, g, b));
-}
-
-/// Saved states or layouts. The caller's buffer (`GR_GLIDE_STATE_SIZE` = 588 or
-/// `GR_GLIDE_VERTEXLAYOUT_SIZE` = 100 bytes) receives a tag and an id; the value
-/// stays here. Copies of a buffer restore the same value, and saving again into a
-/// tagged buffer replaces its entry instead of adding one.
-struct Saved<T> {
-    map: HashMap<u32, T>,
-    next: u32,
-}
-
-impl<T> Default for Saved<T> {
-    fn default() -> Self {
-        Self {
-            map: HashMap::new(),
-            next: 1,
-        }
-    }
-}
-
-/// "G3SV": marks a buffer filled by `grGlideGetState`/`grGlideGetVertexLayout`.
-const SAVED_TAG: u32 = 0x4733_5356;
-
-impl<T> Saved<T> {
-    /// The id tagged in `buf`, if any.
-    unsafe fn id(buf: *const c_void) -> Option<u32> {
-        if buf.is_null() {
-            return None;
-        }
-        let w = buf as *const u32;
-        // SAFETY: the caller's buffer holds at least 8 bytes (both sizes exceed it).
-        let (tag, id) = unsafe { (w.read_unaligned(), w.add(1).read_unaligned()) };
-        (tag == SAVED_TAG).then_some(id)
-    }
-
-    unsafe fn save(&mut self, buf: *mut c_void, value: T) {
-        if buf.is_null() {
+    entry("grLoadGammaTable", || {
+        if r.is_null() || g.is_null() || b.is_null() {
             return;
         }
-        // SAFETY: forwarded buffer.
-        let id = match unsafe { Self::id(buf) } {
-            Some(id) if self.map.contains_key(&id) => id,
-            _ => {
-                self.next = self.next.wrapping_add(1);
-                self.next
-            }
+        let n = n.min(256) as usize;
+        // SAFETY: the caller provides n entries in each table.
+        let (r, g, b) = unsafe {
+            (
+                std::slice::from_raw_parts(r, n),
+                std::slice::from_raw_parts(g, n),
+                std::slice::from_raw_parts(b, n),
+            )
         };
-        self.map.insert(id, value);
-        let w = buf as *mut u32;
-        // SAFETY: the caller's buffer holds at least 8 bytes.
-        unsafe {
-            w.write_unaligned(SAVED_TAG);
-            w.add(1).write_unaligned(id);
-        }
-    }
-
-    unsafe fn get(&self, buf: *const c_void) -> Option<&T> {
-        // SAFETY: forwarded buffer.
-        self.map.get(&unsafe { Self::id(buf) }?)
-    }
+        with(|c| c.glide.load_gamma_table(r, g, b));
+    })
 }
 
-/// `grGlideGetState`.
+// The saved state and vertex layout live in the caller's buffer (`glide::saved`), as
+// in 3dfx's Glide: saving allocates nothing, and a copy of a buffer restores the same
+// value.
+
+/// Copies `bytes` into the program's `size`-byte buffer at `buf` (null: nothing).
+unsafe fn save_to(buf: *mut c_void, size: i32, bytes: &[u8]) {
+    if buf.is_null() {
+        return;
+    }
+    debug_assert!(bytes.len() <= size as usize);
+    let n = bytes.len().min(size as usize);
+    // SAFETY: the caller's buffer holds `size` bytes (what grGet answers for it).
+    unsafe { std::ptr::copy_nonoverlapping(bytes.as_ptr(), buf as *mut u8, n) };
+}
+
+/// The program's `size`-byte buffer at `buf` (null: empty).
+unsafe fn saved_bytes<'a>(buf: *const c_void, size: i32) -> &'a [u8] {
+    if buf.is_null() {
+        return &[];
+    }
+    // SAFETY: the caller's buffer holds `size` bytes (what grGet answers for it).
+    unsafe { std::slice::from_raw_parts(buf as *const u8, size as usize) }
+}
+
+/// `grGlideGetState`: fills a `GR_GLIDE_STATE_SIZE`-byte buffer.
 #[no_mangle]
 pub unsafe extern "C" fn grGlideGetState(state: *mut c_void) {
-    with(|c| {
-        let s = c.glide.get_state();
+    entry("grGlideGetState", || {
+        let bytes = with(|c| c.glide.get_state().to_bytes());
         // SAFETY: a GR_GLIDE_STATE_SIZE buffer.
-        unsafe { c.states.save(state, s) };
-    });
+        unsafe { save_to(state, glide::get::GLIDE_STATE_SIZE, &bytes) };
+    })
 }
 
-/// `grGlideSetState`.
+/// `grGlideSetState`: restores a buffer `grGlideGetState` filled (or a copy of one).
 #[no_mangle]
 pub unsafe extern "C" fn grGlideSetState(state: *const c_void) {
-    with(|c| {
-        // SAFETY: a buffer filled by grGlideGetState.
-        match unsafe { c.states.get(state) }.cloned() {
+    entry("grGlideSetState", || {
+        // SAFETY: a GR_GLIDE_STATE_SIZE buffer.
+        let bytes = unsafe { saved_bytes(state, glide::get::GLIDE_STATE_SIZE) };
+        with(|c| match GlideState::from_bytes(bytes) {
             Some(s) => c.glide.set_state(&s),
             None => c
                 .glide
                 .report_error("grGlideSetState: state was not saved by grGlideGetState"),
-        }
-    });
+        })
+    })
 }
 
-/// `grGlideGetVertexLayout`.
+/// `grGlideGetVertexLayout`: fills a `GR_GLIDE_VERTEXLAYOUT_SIZE`-byte buffer.
 #[no_mangle]
 pub unsafe extern "C" fn grGlideGetVertexLayout(layout: *mut c_void) {
-    with(|c| {
-        let l = c.glide.get_vertex_layout();
+    entry("grGlideGetVertexLayout", || {
+        let bytes = with(|c| c.glide.get_vertex_layout().to_bytes());
         // SAFETY: a GR_GLIDE_VERTEXLAYOUT_SIZE buffer.
-        unsafe { c.layouts.save(layout, l) };
-    });
+        unsafe { save_to(layout, glide::get::GLIDE_VERTEXLAYOUT_SIZE, &bytes) };
+    })
 }
 
-/// `grGlideSetVertexLayout`.
+/// `grGlideSetVertexLayout`: restores a buffer `grGlideGetVertexLayout` filled.
 #[no_mangle]
 pub unsafe extern "C" fn grGlideSetVertexLayout(layout: *const c_void) {
-    with(|c| {
-        // SAFETY: a buffer filled by grGlideGetVertexLayout.
-        match unsafe { c.layouts.get(layout) }.copied() {
+    entry("grGlideSetVertexLayout", || {
+        // SAFETY: a GR_GLIDE_VERTEXLAYOUT_SIZE buffer.
+        let bytes = unsafe { saved_bytes(layout, glide::get::GLIDE_VERTEXLAYOUT_SIZE) };
+        with(|c| match VertexLayout::from_bytes(bytes) {
             Some(l) => c.glide.set_vertex_layout(&l),
             None => c.glide.report_error(
                 "grGlideSetVertexLayout: layout was not saved by grGlideGetVertexLayout",
             ),
-        }
-    });
+        })
+    })
 }
 
 // ----- drawing ----------------------------------------------------------------------
@@ -872,43 +1014,49 @@ fn null_vertex(call: &str, ptrs: &[*const c_void]) -> bool {
 /// `grDrawPoint`.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawPoint(p: *const c_void) {
-    if null_vertex("grDrawPoint", &[p]) {
-        return;
-    }
-    with(|c| {
-        let l = c.glide.get_vertex_layout();
-        // SAFETY: Glide vertex pointer.
-        let v = unsafe { vertex(&l, p) };
-        c.glide.draw_point(&v);
-    });
+    entry("grDrawPoint", || {
+        if null_vertex("grDrawPoint", &[p]) {
+            return;
+        }
+        with(|c| {
+            let l = c.glide.get_vertex_layout();
+            // SAFETY: Glide vertex pointer.
+            let v = unsafe { vertex(&l, p) };
+            c.glide.draw_point(&v);
+        });
+    })
 }
 
 /// `grDrawLine`.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawLine(a: *const c_void, b: *const c_void) {
-    if null_vertex("grDrawLine", &[a, b]) {
-        return;
-    }
-    with(|c| {
-        let l = c.glide.get_vertex_layout();
-        // SAFETY: Glide vertex pointers.
-        let (a, b) = unsafe { (vertex(&l, a), vertex(&l, b)) };
-        c.glide.draw_line(&a, &b);
-    });
+    entry("grDrawLine", || {
+        if null_vertex("grDrawLine", &[a, b]) {
+            return;
+        }
+        with(|c| {
+            let l = c.glide.get_vertex_layout();
+            // SAFETY: Glide vertex pointers.
+            let (a, b) = unsafe { (vertex(&l, a), vertex(&l, b)) };
+            c.glide.draw_line(&a, &b);
+        });
+    })
 }
 
 /// `grDrawTriangle`.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawTriangle(a: *const c_void, b: *const c_void, cc: *const c_void) {
-    if null_vertex("grDrawTriangle", &[a, b, cc]) {
-        return;
-    }
-    with(|c| {
-        let l = c.glide.get_vertex_layout();
-        // SAFETY: Glide vertex pointers.
-        let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
-        c.glide.draw_triangle(&a, &b, &cc);
-    });
+    entry("grDrawTriangle", || {
+        if null_vertex("grDrawTriangle", &[a, b, cc]) {
+            return;
+        }
+        with(|c| {
+            let l = c.glide.get_vertex_layout();
+            // SAFETY: Glide vertex pointers.
+            let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
+            c.glide.draw_triangle(&a, &b, &cc);
+        });
+    })
 }
 
 /// `grAADrawTriangle`: the triangle with alpha-blended edge triangles on the edges
@@ -922,36 +1070,41 @@ pub unsafe extern "C" fn grAADrawTriangle(
     bc: FxBool,
     ca: FxBool,
 ) {
-    if null_vertex("grAADrawTriangle", &[a, b, cc]) {
-        return;
-    }
-    with(|c| {
-        let l = c.glide.get_vertex_layout();
-        // SAFETY: Glide vertex pointers (checked non-null).
-        let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
-        c.glide
-            .aa_draw_triangle(&a, &b, &cc, ab != 0, bc != 0, ca != 0);
-    });
+    entry("grAADrawTriangle", || {
+        if null_vertex("grAADrawTriangle", &[a, b, cc]) {
+            return;
+        }
+        with(|c| {
+            let l = c.glide.get_vertex_layout();
+            // SAFETY: Glide vertex pointers (checked non-null).
+            let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
+            c.glide
+                .aa_draw_triangle(&a, &b, &cc, ab != 0, bc != 0, ca != 0);
+        });
+    })
 }
 
 /// `grDrawVertexArray`: `pointers` is an array of `count` vertex pointers.
 #[no_mangle]
 pub unsafe extern "C" fn grDrawVertexArray(mode: u32, count: u32, pointers: *const *const c_void) {
-    if null_vertex("grDrawVertexArray", &[pointers as *const c_void]) {
-        return;
-    }
-    // SAFETY: `count` vertex pointers.
-    let list = unsafe { std::slice::from_raw_parts(pointers, count as usize) };
-    if null_vertex("grDrawVertexArray", list) {
-        return;
-    }
-    with(|c| {
-        let l = c.glide.get_vertex_layout();
-        // SAFETY: non-null Glide vertex pointers.
-        let verts: Vec<Vec<f32>> = list.iter().map(|&p| unsafe { vertex(&l, p) }).collect();
-        let refs: Vec<&[f32]> = verts.iter().map(Vec::as_slice).collect();
-        c.glide.draw_vertex_array(mode, &refs);
-    });
+    entry("grDrawVertexArray", || {
+        if null_vertex("grDrawVertexArray", &[pointers as *const c_void]) {
+            return;
+        }
+        // SAFETY: `count` vertex pointers.
+        let list = unsafe { std::slice::from_raw_parts(pointers, count as usize) };
+        if null_vertex("grDrawVertexArray", list) {
+            return;
+        }
+        with(|c| {
+            let l = c.glide.get_vertex_layout();
+            // One vertex read at a time: no memory in proportion to `count`.
+            c.glide.draw_vertex_array_with(mode, list.len(), |i| {
+                // SAFETY: a non-null Glide vertex pointer.
+                Cow::Owned(unsafe { vertex(&l, list[i]) })
+            });
+        });
+    })
 }
 
 /// `grDrawVertexArrayContiguous`: `count` vertices `stride` bytes apart.
@@ -962,23 +1115,24 @@ pub unsafe extern "C" fn grDrawVertexArrayContiguous(
     data: *const c_void,
     stride: u32,
 ) {
-    if null_vertex("grDrawVertexArrayContiguous", &[data]) {
-        return;
-    }
-    with(|c| {
-        let l = c.glide.get_vertex_layout();
-        // SAFETY: `count` vertices at `stride` bytes.
-        let verts: Vec<Vec<f32>> = (0..count as usize)
-            .map(|i| unsafe {
-                vertex(
-                    &l,
-                    (data as *const u8).add(i * stride as usize) as *const c_void,
-                )
-            })
-            .collect();
-        let refs: Vec<&[f32]> = verts.iter().map(Vec::as_slice).collect();
-        c.glide.draw_vertex_array(mode, &refs);
-    });
+    entry("grDrawVertexArrayContiguous", || {
+        if null_vertex("grDrawVertexArrayContiguous", &[data]) {
+            return;
+        }
+        with(|c| {
+            let l = c.glide.get_vertex_layout();
+            let base = data as *const u8;
+            // One vertex read at a time: no memory in proportion to `count`.
+            let stride = stride as usize;
+            c.glide
+                .draw_vertex_array_contiguous_with(mode, count as usize, stride, |i| {
+                    // (count - 1) * stride < 2^64: no overflow on a 64-bit host.
+                    let p = base.wrapping_add(i.wrapping_mul(stride)) as *const c_void;
+                    // SAFETY: vertex `i` of the caller's `count` vertices `stride` apart.
+                    Cow::Owned(unsafe { vertex(&l, p) })
+                });
+        });
+    })
 }
 
 // ----- buffers ----------------------------------------------------------------------
@@ -986,22 +1140,28 @@ pub unsafe extern "C" fn grDrawVertexArrayContiguous(
 /// `grBufferClear`.
 #[no_mangle]
 pub extern "C" fn grBufferClear(color: u32, alpha: u8, depth: u32) {
-    with(|c| c.glide.buffer_clear(color, alpha, depth));
+    entry("grBufferClear", || {
+        with(|c| c.glide.buffer_clear(color, alpha, depth));
+    })
 }
 
 /// `grBufferSwap`; saves the PNG when `VOODOO_PNG` asks for this swap.
 #[no_mangle]
 pub extern "C" fn grBufferSwap(interval: u32) {
-    with(|c| {
-        c.glide.buffer_swap(interval);
-        after_swap(c);
-    });
+    entry("grBufferSwap", || {
+        with(|c| {
+            c.glide.buffer_swap(interval);
+            after_swap(c);
+        });
+    })
 }
 
 /// `grBufferNumPending`.
 #[no_mangle]
 pub extern "C" fn grBufferNumPending() -> c_int {
-    with(|c| c.glide.buffer_num_pending() as c_int)
+    entry("grBufferNumPending", || {
+        with(|c| c.glide.buffer_num_pending() as c_int)
+    })
 }
 
 // ----- LFB --------------------------------------------------------------------------
@@ -1033,67 +1193,90 @@ pub unsafe extern "C" fn grLfbLock(
     pipeline: FxBool,
     info: *mut GrLfbInfo,
 ) -> FxBool {
-    if info.is_null() {
-        return 0;
-    }
-    with(|c| {
-        let Some(li) =
-            c.glide
-                .lfb_lock(ty, buffer as u32, mode as u32, origin as u32, pipeline != 0)
-        else {
+    entry("grLfbLock", || {
+        if info.is_null() {
+            with(|c| {
+                c.glide
+                    .report_error("grLfbLock: NULL info structure passed")
+            });
             return 0;
-        };
-        let write = ty & !GR_LFB_NOIDLE == GR_LFB_WRITE_ONLY;
-        let (w, h) = c.glide.screen_size();
-        let mut words = vec![0u32; LFB_WORDS];
-        if !write || li.stride_in_bytes == 2048 {
-            // Fill what the program can see from the board (16-bit layout).
-            for y in 0..h as usize {
-                for x in 0..(w as usize).div_ceil(2) {
-                    words[y * 512 + x] = c.glide.lfb_read32((y * 2048 + x * 4) as u32);
+        }
+        with_process(|p| {
+            let Some(c) = p.session.as_mut() else {
+                return 0;
+            };
+            // Refused (and reported) unless the type, buffer and mode are valid and the
+            // slot is free: only then is the shadow touched.
+            let Some(li) =
+                c.glide
+                    .lfb_lock(ty, buffer as u32, mode as u32, origin as u32, pipeline != 0)
+            else {
+                return 0;
+            };
+            let Some(slot) = glide::lfb::lock_slot(ty) else {
+                return 0;
+            };
+            let write = slot == 1;
+            let shadow = p.lfb[slot].get_or_insert_with(LfbShadow::new);
+            shadow.words.fill(0);
+            if !write || li.stride_in_bytes == 2048 {
+                // Fill what the program can see from the board (16-bit layout).
+                let (w, h) = c.glide.screen_size();
+                let (w, h) = glide::lfb::clip_to_window(0, 0, w.div_ceil(2), h);
+                for y in 0..h as usize {
+                    for x in 0..w as usize {
+                        shadow.words[y * 512 + x] = c.glide.lfb_read32((y * 2048 + x * 4) as u32);
+                    }
                 }
             }
-        }
-        let shadow = LfbShadow {
-            initial: if write { words.clone() } else { Vec::new() },
-            words,
-            write,
-        };
-        let slot = usize::from(write);
-        c.lfb[slot] = Some(shadow);
-        let ptr = c.lfb[slot].as_mut().map_or(std::ptr::null_mut(), |s| {
-            s.words.as_mut_ptr() as *mut c_void
-        });
-        // SAFETY: checked non-null above.
-        unsafe {
-            (*info).lfb_ptr = ptr;
-            (*info).stride_in_bytes = li.stride_in_bytes;
-            (*info).write_mode = li.write_mode as i32;
-            (*info).origin = li.origin as i32;
-        }
-        1
+            if write {
+                shadow.initial.copy_from_slice(&shadow.words);
+            }
+            // SAFETY: checked non-null above.
+            unsafe {
+                (*info).lfb_ptr = shadow.words.as_mut_ptr() as *mut c_void;
+                (*info).stride_in_bytes = li.stride_in_bytes;
+                (*info).write_mode = li.write_mode as i32;
+                (*info).origin = li.origin as i32;
+            }
+            1
+        })
     })
 }
 
-/// `grLfbUnlock`.
+/// `grLfbUnlock`: a write lock's changed words reach the board first. An unlock that
+/// does not match the lock fails and leaves the lock (and its pointer) as they were.
 #[no_mangle]
 pub extern "C" fn grLfbUnlock(ty: u32, buffer: i32) -> FxBool {
-    with(|c| {
-        let write = ty & !GR_LFB_NOIDLE == GR_LFB_WRITE_ONLY;
-        if let Some(s) = c.lfb[usize::from(write)].take() {
-            if s.write {
-                for (i, (&now, &was)) in s.words.iter().zip(&s.initial).enumerate() {
+    entry("grLfbUnlock", || {
+        with_process(|p| {
+            let Some(c) = p.session.as_mut() else {
+                return 0;
+            };
+            let holds = c.glide.lfb_locked_buffer(ty) == Some(buffer as u32);
+            if let (true, Some(1), Some(shadow)) = (holds, glide::lfb::lock_slot(ty), &p.lfb[1]) {
+                for (i, (&now, &was)) in shadow.words.iter().zip(&shadow.initial[..]).enumerate() {
                     if now != was {
                         c.glide.lfb_write32((i * 4) as u32, now);
                     }
                 }
             }
-        }
-        FxBool::from(c.glide.lfb_unlock(ty, buffer as u32))
+            FxBool::from(c.glide.lfb_unlock(ty, buffer as u32))
+        })
     })
 }
 
-/// `grLfbWriteRegion`.
+/// Bytes of caller memory a region of `height` rows `stride` apart, `row_bytes` used in
+/// each, covers.
+fn region_bytes(height: u32, stride: usize, row_bytes: usize) -> usize {
+    match height {
+        0 => 0,
+        h => (h as usize - 1) * stride + row_bytes,
+    }
+}
+
+/// `grLfbWriteRegion`: clipped to the LFB window (`glide::lfb::clip_to_window`); only
+/// the rows and pixels inside it are read from `data`.
 #[no_mangle]
 pub unsafe extern "C" fn grLfbWriteRegion(
     buffer: i32,
@@ -1106,28 +1289,38 @@ pub unsafe extern "C" fn grLfbWriteRegion(
     stride: i32,
     data: *const c_void,
 ) -> FxBool {
-    if data.is_null() || stride < 0 {
-        return 0;
-    }
-    let len = stride as usize * h as usize;
-    // SAFETY: the caller provides h rows of stride bytes.
-    let src = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
-    with(|c| {
-        FxBool::from(c.glide.lfb_write_region(
-            buffer as u32,
-            x,
-            y,
-            fmt,
-            w,
-            h,
-            pipeline != 0,
-            stride as usize,
-            src,
-        ))
+    entry("grLfbWriteRegion", || {
+        if data.is_null() || stride < 0 {
+            return 0;
+        }
+        let (cw, ch) = glide::lfb::clip_to_window(x, y, w, h);
+        let pixel_bytes = if glide::lfb::stride_for(fmt) == 2048 {
+            2
+        } else {
+            4
+        };
+        let len = region_bytes(ch, stride as usize, cw as usize * pixel_bytes);
+        // SAFETY: the caller provides h rows of stride bytes, each with w pixels; `len`
+        // covers the clipped part of them.
+        let src = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
+        with(|c| {
+            FxBool::from(c.glide.lfb_write_region(
+                buffer as u32,
+                x,
+                y,
+                fmt,
+                cw,
+                ch,
+                pipeline != 0,
+                stride as usize,
+                src,
+            ))
+        })
     })
 }
 
-/// `grLfbReadRegion`.
+/// `grLfbReadRegion`: 16-bit pixels, clipped to the LFB window; the caller's memory
+/// outside the clipped part is left as it was.
 #[no_mangle]
 pub unsafe extern "C" fn grLfbReadRegion(
     buffer: i32,
@@ -1138,17 +1331,21 @@ pub unsafe extern "C" fn grLfbReadRegion(
     stride: u32,
     data: *mut c_void,
 ) -> FxBool {
-    if data.is_null() {
-        return 0;
-    }
-    let len = stride as usize * h as usize;
-    // SAFETY: the caller provides h rows of stride bytes.
-    let dst = unsafe { std::slice::from_raw_parts_mut(data as *mut u8, len) };
-    with(|c| {
-        FxBool::from(
-            c.glide
-                .lfb_read_region(buffer as u32, x, y, w, h, stride as usize, dst),
-        )
+    entry("grLfbReadRegion", || {
+        if data.is_null() {
+            return 0;
+        }
+        let (cw, ch) = glide::lfb::clip_to_window(x, y, w, h);
+        let len = region_bytes(ch, stride as usize, cw as usize * 2);
+        // SAFETY: the caller provides h rows of stride bytes, each with w pixels; `len`
+        // covers the clipped part of them.
+        let dst = unsafe { std::slice::from_raw_parts_mut(data as *mut u8, len) };
+        with(|c| {
+            FxBool::from(
+                c.glide
+                    .lfb_read_region(buffer as u32, x, y, cw, ch, stride as usize, dst),
+            )
+        })
     })
 }
 
@@ -1197,45 +1394,55 @@ fn host_bytes(info: &TexInfo) -> usize {
 /// `grTexMinAddress`.
 #[no_mangle]
 pub extern "C" fn grTexMinAddress(tmu: i32) -> u32 {
-    with(|c| c.glide.tex_min_address(tmu as u32))
+    entry("grTexMinAddress", || {
+        with(|c| c.glide.tex_min_address(tmu as u32))
+    })
 }
 
 /// `grTexMaxAddress`.
 #[no_mangle]
 pub extern "C" fn grTexMaxAddress(tmu: i32) -> u32 {
-    with(|c| c.glide.tex_max_address(tmu as u32))
+    entry("grTexMaxAddress", || {
+        with(|c| c.glide.tex_max_address(tmu as u32))
+    })
 }
 
 /// `grTexTextureMemRequired`.
 #[no_mangle]
 pub unsafe extern "C" fn grTexTextureMemRequired(even_odd: u32, info: *const GrTexInfo) -> u32 {
-    // SAFETY: caller's GrTexInfo.
-    let Some((i, _)) = (unsafe { tex_info(info) }) else {
-        return 0;
-    };
-    with(|c| c.glide.tex_texture_mem_required(even_odd, &i))
+    entry("grTexTextureMemRequired", || {
+        // SAFETY: caller's GrTexInfo.
+        let Some((i, _)) = (unsafe { tex_info(info) }) else {
+            return 0;
+        };
+        with(|c| c.glide.tex_texture_mem_required(even_odd, &i))
+    })
 }
 
 /// `grTexCalcMemRequired`.
 #[no_mangle]
 pub extern "C" fn grTexCalcMemRequired(small: i32, large: i32, aspect: i32, format: i32) -> u32 {
-    with(|c| {
-        c.glide.tex_calc_mem_required(
-            small.max(0) as u32,
-            large.max(0) as u32,
-            aspect,
-            format.max(0) as u32,
-        )
+    entry("grTexCalcMemRequired", || {
+        with(|c| {
+            c.glide.tex_calc_mem_required(
+                small.max(0) as u32,
+                large.max(0) as u32,
+                aspect,
+                format.max(0) as u32,
+            )
+        })
     })
 }
 
 /// `grTexSource`.
 #[no_mangle]
 pub unsafe extern "C" fn grTexSource(tmu: i32, start: u32, even_odd: u32, info: *const GrTexInfo) {
-    // SAFETY: caller's GrTexInfo.
-    if let Some((i, _)) = unsafe { tex_info(info) } {
-        with(|c| c.glide.tex_source(tmu as u32, start, even_odd, &i));
-    }
+    entry("grTexSource", || {
+        // SAFETY: caller's GrTexInfo.
+        if let Some((i, _)) = unsafe { tex_info(info) } {
+            with(|c| c.glide.tex_source(tmu as u32, start, even_odd, &i));
+        }
+    })
 }
 
 /// `grTexMultibaseAddress`.
@@ -1247,13 +1454,15 @@ pub unsafe extern "C" fn grTexMultibaseAddress(
     even_odd: u32,
     info: *const GrTexInfo,
 ) {
-    // SAFETY: caller's GrTexInfo.
-    if let Some((i, _)) = unsafe { tex_info(info) } {
-        with(|c| {
-            c.glide
-                .tex_multibase_address(tmu as u32, range, start, even_odd, &i)
-        });
-    }
+    entry("grTexMultibaseAddress", || {
+        // SAFETY: caller's GrTexInfo.
+        if let Some((i, _)) = unsafe { tex_info(info) } {
+            with(|c| {
+                c.glide
+                    .tex_multibase_address(tmu as u32, range, start, even_odd, &i)
+            });
+        }
+    })
 }
 
 /// `grTexDownloadMipMap`.
@@ -1264,19 +1473,21 @@ pub unsafe extern "C" fn grTexDownloadMipMap(
     even_odd: u32,
     info: *const GrTexInfo,
 ) {
-    // SAFETY: caller's GrTexInfo.
-    let Some((i, data)) = (unsafe { tex_info(info) }) else {
-        return;
-    };
-    if data.is_null() {
-        return;
-    }
-    // SAFETY: the texel data covers every level of the mipmap.
-    let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, host_bytes(&i)) };
-    with(|c| {
-        c.glide
-            .tex_download_mipmap(tmu as u32, start, even_odd, &i, bytes)
-    });
+    entry("grTexDownloadMipMap", || {
+        // SAFETY: caller's GrTexInfo.
+        let Some((i, data)) = (unsafe { tex_info(info) }) else {
+            return;
+        };
+        if data.is_null() {
+            return;
+        }
+        // SAFETY: the texel data covers every level of the mipmap.
+        let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, host_bytes(&i)) };
+        with(|c| {
+            c.glide
+                .tex_download_mipmap(tmu as u32, start, even_odd, &i, bytes)
+        });
+    })
 }
 
 /// `grTexDownloadMipMapLevel`.
@@ -1291,22 +1502,24 @@ pub unsafe extern "C" fn grTexDownloadMipMapLevel(
     even_odd: u32,
     data: *const c_void,
 ) {
-    // SAFETY: forwarded with the whole level.
-    let (_, h) = glide::tex::level_wh(lod.max(0) as u32, aspect);
-    unsafe {
-        grTexDownloadMipMapLevelPartial(
-            tmu,
-            start,
-            lod,
-            large,
-            aspect,
-            format,
-            even_odd,
-            data,
-            0,
-            h as c_int - 1,
-        )
-    };
+    entry("grTexDownloadMipMapLevel", || {
+        // SAFETY: forwarded with the whole level.
+        let (_, h) = glide::tex::level_wh(lod.max(0) as u32, aspect);
+        unsafe {
+            grTexDownloadMipMapLevelPartial(
+                tmu,
+                start,
+                lod,
+                large,
+                aspect,
+                format,
+                even_odd,
+                data,
+                0,
+                h as c_int - 1,
+            )
+        };
+    })
 }
 
 /// `grTexDownloadMipMapLevelPartial`.
@@ -1323,31 +1536,44 @@ pub unsafe extern "C" fn grTexDownloadMipMapLevelPartial(
     t: c_int,
     max_t: c_int,
 ) -> FxBool {
-    if data.is_null() || t < 0 || max_t < t {
-        return 0;
-    }
-    let (w, _) = glide::tex::level_wh(lod.max(0) as u32, aspect);
-    let texel = if format >= GR_TEXFMT_16BIT as i32 {
-        2
-    } else {
-        1
-    };
-    let len = (w as usize) * texel * (max_t - t + 1) as usize;
-    // SAFETY: rows t..=max_t of the level.
-    let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
-    with(|c| {
-        FxBool::from(c.glide.tex_download_mipmap_level_partial(
-            tmu as u32,
-            start,
-            lod.max(0) as u32,
-            large.max(0) as u32,
-            aspect,
-            format.max(0) as u32,
-            even_odd,
-            bytes,
-            t,
-            max_t,
-        ))
+    entry("grTexDownloadMipMapLevelPartial", || {
+        if data.is_null() {
+            with(|c| {
+                c.glide
+                    .report_error("grTexDownloadMipMapLevelPartial: NULL pointer passed")
+            });
+            return 0;
+        }
+        // Only rows that lie inside the level are read; any other range is refused
+        // (and reported) below without reading the caller's data.
+        let level = lod.max(0) as u32;
+        let len = if glide::tex::rows_ok(level, aspect, t, max_t) {
+            let (w, _) = glide::tex::level_wh(level, aspect);
+            let texel = if format >= GR_TEXFMT_16BIT as i32 {
+                2
+            } else {
+                1
+            };
+            (w as usize) * texel * (max_t - t + 1) as usize
+        } else {
+            0
+        };
+        // SAFETY: rows t..=max_t of the level, which the caller provides.
+        let bytes = unsafe { std::slice::from_raw_parts(data as *const u8, len) };
+        with(|c| {
+            FxBool::from(c.glide.tex_download_mipmap_level_partial(
+                tmu as u32,
+                start,
+                lod.max(0) as u32,
+                large.max(0) as u32,
+                aspect,
+                format.max(0) as u32,
+                even_odd,
+                bytes,
+                t,
+                max_t,
+            ))
+        })
     })
 }
 
@@ -1380,8 +1606,10 @@ unsafe fn download_table(tmu: u32, ty: u32, data: *const c_void, start: usize, e
 /// `grTexDownloadTable`.
 #[no_mangle]
 pub unsafe extern "C" fn grTexDownloadTable(ty: u32, data: *const c_void) {
-    // SAFETY: forwarded table pointer.
-    unsafe { download_table(0, ty, data, 0, 255) };
+    entry("grTexDownloadTable", || {
+        // SAFETY: forwarded table pointer.
+        unsafe { download_table(0, ty, data, 0, 255) };
+    })
 }
 
 /// `grTexDownloadTablePartial`.
@@ -1392,15 +1620,19 @@ pub unsafe extern "C" fn grTexDownloadTablePartial(
     start: c_int,
     end: c_int,
 ) {
-    // SAFETY: forwarded table pointer.
-    unsafe { download_table(0, ty, data, start.max(0) as usize, end.max(0) as usize) };
+    entry("grTexDownloadTablePartial", || {
+        // SAFETY: forwarded table pointer.
+        unsafe { download_table(0, ty, data, start.max(0) as usize, end.max(0) as usize) };
+    })
 }
 
 /// `grTexDownloadTableExt`.
 #[no_mangle]
 pub unsafe extern "C" fn grTexDownloadTableExt(tmu: i32, ty: u32, data: *const c_void) {
-    // SAFETY: forwarded table pointer.
-    unsafe { download_table(tmu as u32, ty, data, 0, 255) };
+    entry("grTexDownloadTableExt", || {
+        // SAFETY: forwarded table pointer.
+        unsafe { download_table(tmu as u32, ty, data, 0, 255) };
+    })
 }
 
 // ----- gu utilities -----------------------------------------------------------------
@@ -1408,7 +1640,7 @@ pub unsafe extern "C" fn grTexDownloadTableExt(tmu: i32, ty: u32, data: *const c
 /// `guFogTableIndexToW`.
 #[no_mangle]
 pub extern "C" fn guFogTableIndexToW(i: c_int) -> f32 {
-    glide::get::fog_table_index_to_w(i)
+    entry("guFogTableIndexToW", || glide::get::fog_table_index_to_w(i))
 }
 
 unsafe fn fog_out(t: *mut u8, f: impl FnOnce(&mut [u8; 64])) {
@@ -1424,22 +1656,28 @@ unsafe fn fog_out(t: *mut u8, f: impl FnOnce(&mut [u8; 64])) {
 /// `guFogGenerateExp`.
 #[no_mangle]
 pub unsafe extern "C" fn guFogGenerateExp(t: *mut u8, density: f32) {
-    // SAFETY: caller's 64-entry table.
-    unsafe { fog_out(t, |x| glide::get::fog_generate_exp(x, density)) };
+    entry("guFogGenerateExp", || {
+        // SAFETY: caller's 64-entry table.
+        unsafe { fog_out(t, |x| glide::get::fog_generate_exp(x, density)) };
+    })
 }
 
 /// `guFogGenerateExp2`.
 #[no_mangle]
 pub unsafe extern "C" fn guFogGenerateExp2(t: *mut u8, density: f32) {
-    // SAFETY: caller's 64-entry table.
-    unsafe { fog_out(t, |x| glide::get::fog_generate_exp2(x, density)) };
+    entry("guFogGenerateExp2", || {
+        // SAFETY: caller's 64-entry table.
+        unsafe { fog_out(t, |x| glide::get::fog_generate_exp2(x, density)) };
+    })
 }
 
 /// `guFogGenerateLinear`.
 #[no_mangle]
 pub unsafe extern "C" fn guFogGenerateLinear(t: *mut u8, near: f32, far: f32) {
-    // SAFETY: caller's 64-entry table.
-    unsafe { fog_out(t, |x| glide::get::fog_generate_linear(x, near, far)) };
+    entry("guFogGenerateLinear", || {
+        // SAFETY: caller's 64-entry table.
+        unsafe { fog_out(t, |x| glide::get::fog_generate_linear(x, near, far)) };
+    })
 }
 
 // ----- .3DF files -------------------------------------------------------------------
@@ -1478,88 +1716,100 @@ pub struct Gu3dfInfo {
 }
 
 /// Reads a whole file named by a C string.
-unsafe fn read_file(name: *const c_char) -> Option<Vec<u8>> {
+/// Reads at most `limit` bytes from the start of the file named by a C string.
+unsafe fn read_file(name: *const c_char, limit: usize) -> Option<Vec<u8>> {
     if name.is_null() {
         return None;
     }
     // SAFETY: the caller's NUL-terminated file name.
     let name = unsafe { CStr::from_ptr(name) };
-    std::fs::read(name.to_str().ok()?).ok()
+    let file = std::fs::File::open(name.to_str().ok()?).ok()?;
+    let mut bytes = Vec::new();
+    file.take(limit as u64).read_to_end(&mut bytes).ok()?;
+    Some(bytes)
 }
 
 /// `gu3dfGetInfo`: fills `info->header` and `info->mem_required`.
 #[no_mangle]
 pub unsafe extern "C" fn gu3dfGetInfo(filename: *const c_char, info: *mut Gu3dfInfo) -> FxBool {
-    // SAFETY: the caller's file name and Gu3dfInfo (checked for null).
-    let (Some(file), Some(info)) = (unsafe { read_file(filename) }, unsafe { info.as_mut() })
-    else {
-        return 0;
-    };
-    let Ok(i) = glide::g3df::get_info(&file) else {
-        return 0;
-    };
-    info.header = Gu3dfHeader {
-        width: i.header.width,
-        height: i.header.height,
-        small_lod: i.header.small_lod as c_int,
-        large_lod: i.header.large_lod as c_int,
-        aspect_ratio: i.header.aspect,
-        format: i.header.format as i32,
-    };
-    info.mem_required = i.mem_required;
-    1
+    entry("gu3dfGetInfo", || {
+        // SAFETY: the caller's file name and Gu3dfInfo (checked for null).
+        let (Some(file), Some(info)) = (
+            unsafe { read_file(filename, glide::g3df::MAX_HEADER_BYTES) },
+            unsafe { info.as_mut() },
+        ) else {
+            return 0;
+        };
+        let Ok(i) = glide::g3df::get_info(&file) else {
+            return 0;
+        };
+        info.header = Gu3dfHeader {
+            width: i.header.width,
+            height: i.header.height,
+            small_lod: i.header.small_lod as c_int,
+            large_lod: i.header.large_lod as c_int,
+            aspect_ratio: i.header.aspect,
+            format: i.header.format as i32,
+        };
+        info.mem_required = i.mem_required;
+        1
+    })
 }
 
 /// `gu3dfLoad`: the table into `info->table` and the texels into `info->data`
 /// (`info->mem_required` bytes; 16-bit texels in host order).
 #[no_mangle]
 pub unsafe extern "C" fn gu3dfLoad(filename: *const c_char, info: *mut Gu3dfInfo) -> FxBool {
-    // SAFETY: the caller's file name and Gu3dfInfo (checked for null).
-    let (Some(file), Some(info)) = (unsafe { read_file(filename) }, unsafe { info.as_mut() })
-    else {
-        return 0;
-    };
-    if info.data.is_null() {
-        return 0;
-    }
-    let h = info.header;
-    let header = glide::g3df::Gu3dfHeader {
-        width: h.width,
-        height: h.height,
-        small_lod: h.small_lod.clamp(0, 8) as u32,
-        large_lod: h.large_lod.clamp(0, 8) as u32,
-        aspect: h.aspect_ratio,
-        format: h.format.max(0) as u32,
-    };
-    let Ok((table, data)) = glide::g3df::load(&file, &header) else {
-        return 0;
-    };
-    match table {
-        glide::g3df::TexTable::None => {}
-        glide::g3df::TexTable::Palette(p) => info.table = *p,
-        glide::g3df::TexTable::Ncc(n) => {
-            // GuNccTable: yRGB[16] u8, iRGB[4][3] i16, qRGB[4][3] i16, packed_data[12].
-            let mut bytes = Vec::with_capacity(112);
-            bytes.extend_from_slice(&n.y);
-            for v in n.i.iter().chain(n.q.iter()).flatten() {
-                bytes.extend_from_slice(&v.to_ne_bytes());
-            }
-            for w in n.packed {
-                bytes.extend_from_slice(&w.to_ne_bytes());
-            }
-            for (dst, src) in info.table.iter_mut().zip(bytes.chunks_exact(4)) {
-                *dst = u32::from_ne_bytes([src[0], src[1], src[2], src[3]]);
+    entry("gu3dfLoad", || {
+        // SAFETY: the caller's file name and Gu3dfInfo (checked for null).
+        let (Some(file), Some(info)) = (
+            unsafe { read_file(filename, glide::g3df::MAX_FILE_BYTES) },
+            unsafe { info.as_mut() },
+        ) else {
+            return 0;
+        };
+        if info.data.is_null() {
+            return 0;
+        }
+        let h = info.header;
+        let header = glide::g3df::Gu3dfHeader {
+            width: h.width,
+            height: h.height,
+            small_lod: h.small_lod.clamp(0, 8) as u32,
+            large_lod: h.large_lod.clamp(0, 8) as u32,
+            aspect: h.aspect_ratio,
+            format: h.format.max(0) as u32,
+        };
+        let Ok((table, data)) = glide::g3df::load(&file, &header) else {
+            return 0;
+        };
+        match table {
+            glide::g3df::TexTable::None => {}
+            glide::g3df::TexTable::Palette(p) => info.table = *p,
+            glide::g3df::TexTable::Ncc(n) => {
+                // GuNccTable: yRGB[16] u8, iRGB[4][3] i16, qRGB[4][3] i16, packed_data[12].
+                let mut bytes = Vec::with_capacity(112);
+                bytes.extend_from_slice(&n.y);
+                for v in n.i.iter().chain(n.q.iter()).flatten() {
+                    bytes.extend_from_slice(&v.to_ne_bytes());
+                }
+                for w in n.packed {
+                    bytes.extend_from_slice(&w.to_ne_bytes());
+                }
+                for (dst, src) in info.table.iter_mut().zip(bytes.chunks_exact(4)) {
+                    *dst = u32::from_ne_bytes([src[0], src[1], src[2], src[3]]);
+                }
             }
         }
-    }
-    // SAFETY: the caller's buffer holds mem_required bytes, which is `data.len()`
-    // for the header gu3dfGetInfo filled.
-    unsafe {
-        std::ptr::copy_nonoverlapping(
-            data.as_ptr(),
-            info.data as *mut u8,
-            data.len().min(info.mem_required as usize),
-        )
-    };
-    1
+        // SAFETY: the caller's buffer holds mem_required bytes, which is `data.len()`
+        // for the header gu3dfGetInfo filled.
+        unsafe {
+            std::ptr::copy_nonoverlapping(
+                data.as_ptr(),
+                info.data as *mut u8,
+                data.len().min(info.mem_required as usize),
+            )
+        };
+        1
+    })
 }

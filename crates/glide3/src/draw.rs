@@ -37,6 +37,7 @@ use crate::hw::bits::*;
 use crate::hw::{tmu_chip, PACKER_FIX};
 use crate::x87::Ext;
 use sst1_regs::addr::*;
+use std::borrow::Cow;
 
 /// Added to window coordinates so the float keeps exactly 4 fraction bits (12.4).
 pub(crate) const SNAP_BIAS: f32 = (3 << 18) as f32;
@@ -100,6 +101,15 @@ pub struct VertexLayout {
     pub qn: [Param; 3],
     /// Whether colours come packed (`GR_U8`, after `GR_PARAM_PARGB`) or as floats.
     pub packed_color: bool,
+}
+
+/// Largest vertex offset `grVertexLayout` accepts, in bytes.
+pub const MAX_VERTEX_OFFSET: i32 = 1024;
+
+/// Whether `grVertexLayout` accepts `offset`: a multiple of 4 in
+/// `0..=`[`MAX_VERTEX_OFFSET`].
+pub fn offset_ok(offset: i32) -> bool {
+    (0..=MAX_VERTEX_OFFSET).contains(&offset) && offset % 4 == 0
 }
 
 /// What one setup step sends: a parameter (start + gradients) or a packer write.
@@ -706,73 +716,109 @@ impl crate::Glide {
         }
     }
 
-    /// Draw a list of vertices as `GR_POINTS`, `GR_LINES`, `GR_LINE_STRIP`,
-    /// `GR_TRIANGLES`, strips, fans or polygons (`grDrawVertexArray`).
-    pub(crate) fn draw_list(&mut self, mode: u32, v: &[&[f32]]) {
-        let n = v.len();
+    /// Draw `n` vertices as `GR_POINTS`, `GR_LINES`, `GR_LINE_STRIP`, `GR_TRIANGLES`,
+    /// strips, fans or polygons (`grDrawVertexArray`). `at(i)` gives vertex `i`; each is
+    /// asked for once, in order, and at most three are held at a time, so memory does not
+    /// grow with `n`.
+    pub(crate) fn draw_list<'v>(
+        &mut self,
+        mode: u32,
+        n: usize,
+        mut at: impl FnMut(usize) -> Cow<'v, [f32]>,
+    ) {
+        let aa = self.st.smooth_mode & AA_TRIANGLES != 0;
         match mode {
-            GR_POINTS => v.iter().for_each(|p| self.point(p)),
-            GR_LINE_STRIP => (1..n).for_each(|i| self.line(v[i - 1], v[i])),
-            GR_LINES => (0..n / 2).for_each(|i| self.line(v[2 * i], v[2 * i + 1])),
-            GR_TRIANGLES if self.st.smooth_mode & AA_TRIANGLES != 0 => (0..n / 3)
-                .for_each(|i| self.aa_triangle(v[3 * i], v[3 * i + 1], v[3 * i + 2], [true; 3])),
-            GR_TRIANGLES => {
-                (0..n / 3).for_each(|i| self.triangle(v[3 * i], v[3 * i + 1], v[3 * i + 2]))
+            GR_POINTS => (0..n).for_each(|i| self.point(&at(i))),
+            GR_LINE_STRIP if n > 0 => {
+                let mut prev = at(0);
+                for i in 1..n {
+                    let next = at(i);
+                    self.line(&prev, &next);
+                    prev = next;
+                }
             }
+            GR_LINES => (0..n / 2).for_each(|i| {
+                let (a, b) = (at(2 * i), at(2 * i + 1));
+                self.line(&a, &b);
+            }),
+            GR_TRIANGLES => (0..n / 3).for_each(|i| {
+                let (a, b, c) = (at(3 * i), at(3 * i + 1), at(3 * i + 2));
+                if aa {
+                    self.aa_triangle(&a, &b, &c, [true; 3]);
+                } else {
+                    self.triangle(&a, &b, &c);
+                }
+            }),
             // Antialiased polygons: the fan with only the perimeter edges antialiased.
             // Source: 3dfx's Glide 3 for the Voodoo 2 (cvg, `_grAADrawVertexList`)
             // antialiases polygon outlines; UNVERIFIED for the SST-1 port, whose
             // grDrawVertexArray leaves strips, fans and polygons aliased.
-            GR_POLYGON if self.st.smooth_mode & AA_TRIANGLES != 0 => {
-                for i in 1..n.saturating_sub(1) {
-                    let edges = [i == 1, true, i + 2 == n];
-                    self.aa_triangle(v[0], v[i], v[i + 1], edges);
+            GR_POLYGON if aa => {
+                if n < 3 {
+                    return;
+                }
+                let center = at(0);
+                let mut prev = at(1);
+                for i in 1..n - 1 {
+                    let next = at(i + 1);
+                    self.aa_triangle(&center, &prev, &next, [i == 1, true, i + 2 == n]);
+                    prev = next;
                 }
             }
             GR_TRIANGLE_STRIP | GR_TRIANGLE_STRIP_CONTINUE => {
-                let continuing = mode == GR_TRIANGLE_STRIP_CONTINUE && self.strip_tail.is_some();
-                let mut all: Vec<&[f32]> = Vec::with_capacity(n + 2);
+                // The strip's vertices: the last two of the previous strip when
+                // continuing one, then the `n` given; `window` holds the newest three.
                 let tail = self.strip_tail.take();
+                let mut window: Vec<Cow<'v, [f32]>> = Vec::with_capacity(3);
                 let mut flip = false;
-                if continuing {
-                    if let Some((t0, t1, f)) = tail.as_ref() {
-                        all.push(t0);
-                        all.push(t1);
-                        flip = *f;
+                if mode == GR_TRIANGLE_STRIP_CONTINUE {
+                    if let Some((t0, t1, f)) = tail {
+                        window.push(Cow::Owned(t0));
+                        window.push(Cow::Owned(t1));
+                        flip = f;
                     }
                 }
-                all.extend_from_slice(v);
                 self.flush_state();
-                for i in 0..all.len().saturating_sub(2) {
-                    if flip {
-                        self.triangle(all[i + 1], all[i], all[i + 2]);
-                    } else {
-                        self.triangle(all[i], all[i + 1], all[i + 2]);
+                for i in 0..n {
+                    window.push(at(i));
+                    if let [a, b, c] = window.as_slice() {
+                        if flip {
+                            self.triangle(b, a, c);
+                        } else {
+                            self.triangle(a, b, c);
+                        }
+                        flip = !flip;
+                        window.remove(0);
                     }
-                    flip = !flip;
                 }
-                let k = all.len();
-                if k >= 2 {
-                    self.strip_tail = Some((all[k - 2].to_vec(), all[k - 1].to_vec(), flip));
+                if let [a, b] = window.as_slice() {
+                    self.strip_tail = Some((a.to_vec(), b.to_vec(), flip));
                 }
             }
             GR_TRIANGLE_FAN | GR_POLYGON | GR_TRIANGLE_FAN_CONTINUE => {
-                let continuing = mode == GR_TRIANGLE_FAN_CONTINUE && self.fan_tail.is_some();
+                // The fan's centre and newest vertex: the previous fan's when continuing
+                // one, else the first two given.
                 let tail = self.fan_tail.take();
-                let mut all: Vec<&[f32]> = Vec::with_capacity(n + 2);
-                if continuing {
-                    if let Some((center, last)) = tail.as_ref() {
-                        all.push(center);
-                        all.push(last);
+                let (mut center, mut last) = match tail {
+                    Some((c, l)) if mode == GR_TRIANGLE_FAN_CONTINUE => {
+                        (Some(Cow::Owned(c)), Some(Cow::Owned(l)))
                     }
-                }
-                all.extend_from_slice(v);
+                    _ => (None, None),
+                };
                 self.flush_state();
-                for i in 1..all.len().saturating_sub(1) {
-                    self.triangle(all[0], all[i], all[i + 1]);
+                for i in 0..n {
+                    let next = at(i);
+                    if center.is_none() {
+                        center = Some(next);
+                        continue;
+                    }
+                    if let (Some(c), Some(l)) = (&center, &last) {
+                        self.triangle(c, l, &next);
+                    }
+                    last = Some(next);
                 }
-                if all.len() >= 2 {
-                    self.fan_tail = Some((all[0].to_vec(), all[all.len() - 1].to_vec()));
+                if let (Some(c), Some(l)) = (center, last) {
+                    self.fan_tail = Some((c.into_owned(), l.into_owned()));
                 }
             }
             _ => {}

@@ -116,8 +116,16 @@ const FORMATS: [(&str, u32); 13] = [
     ("AP88", GR_TEXFMT_AP_88),
 ];
 
-/// The four header lines and the offset of the data after them. 3dfx reads them
-/// with `fgets` into a 100-byte buffer, so they total 99 bytes at most.
+/// Most bytes the four header lines of a `.3DF` file take: 3dfx reads them with `fgets`
+/// into a 100-byte buffer. [`get_info`] needs no more of a file than this.
+pub const MAX_HEADER_BYTES: usize = 99;
+
+/// Most bytes of a file [`load`] reads: the header, the largest table (a palette, 256
+/// big-endian words) and the largest mipmap (256x256 down to 1x1, 16-bit texels).
+pub const MAX_FILE_BYTES: usize = MAX_HEADER_BYTES + 256 * 4 + 2 * 87_381;
+
+/// The four header lines and the offset of the data after them (at most
+/// [`MAX_HEADER_BYTES`]).
 fn header_lines(file: &[u8]) -> Result<(&str, usize), Error3df> {
     let mut end = 0;
     for _ in 0..4 {
@@ -127,7 +135,7 @@ fn header_lines(file: &[u8]) -> Result<(&str, usize), Error3df> {
             .ok_or(Error3df::Header)?;
         end += nl + 1;
     }
-    if end > 99 {
+    if end > MAX_HEADER_BYTES {
         return Err(Error3df::Header);
     }
     let text = std::str::from_utf8(&file[..end]).map_err(|_| Error3df::Header)?;
@@ -311,6 +319,29 @@ pub fn load(file: &[u8], header: &Gu3dfHeader) -> Result<(TexTable, Vec<u8>), Er
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_read_limit_covers_the_largest_file() {
+        let biggest = Gu3dfHeader {
+            width: 256,
+            height: 256,
+            small_lod: 0,
+            large_lod: 8,
+            aspect: 0,
+            format: GR_TEXFMT_AP_88,
+        };
+        assert_eq!(
+            MAX_FILE_BYTES,
+            MAX_HEADER_BYTES + 1024 + mip_bytes(&biggest) as usize
+        );
+        // A header of exactly MAX_HEADER_BYTES is read whole.
+        let mut h = b"3df v1.0\nrgb565\nlod range: 1 256\naspect ratio: 1 1".to_vec();
+        h.resize(MAX_HEADER_BYTES - 1, b' ');
+        h.push(b'\n');
+        assert!(get_info(&h).is_ok());
+        h.insert(8, b' ');
+        assert_eq!(get_info(&h).err(), Some(Error3df::Header));
+    }
 
     #[test]
     fn header_numbers_and_aspects() {

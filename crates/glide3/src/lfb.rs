@@ -30,12 +30,40 @@ const LFB_FORMAT: u32 = 0xf;
 
 /// Bytes per pixel slot in the LFB for a write mode (16-bit modes pack two pixels
 /// per word; 32-bit modes use one word per pixel).
-pub(crate) fn stride_for(mode: u32) -> u32 {
+pub fn stride_for(mode: u32) -> u32 {
     match mode {
         GR_LFBWRITEMODE_565 | GR_LFBWRITEMODE_555 | GR_LFBWRITEMODE_1555 | GR_LFBWRITEMODE_ZA16 => {
             2048
         }
         _ => 4096,
+    }
+}
+
+/// Pixels per row and rows of the LFB window (spec section 4: x and y are 10-bit
+/// fields of an LFB address). Region copies are clipped to it.
+pub const LFB_WINDOW: u32 = 1024;
+
+/// The lock slot (0 read, 1 write) of a `GrLock_t`, or `None` for a type that is neither
+/// `GR_LFB_READ_ONLY` nor `GR_LFB_WRITE_ONLY` (with or without `GR_LFB_NOIDLE`).
+pub fn lock_slot(ty: u32) -> Option<usize> {
+    match ty & !GR_LFB_NOIDLE {
+        GR_LFB_READ_ONLY => Some(0),
+        GR_LFB_WRITE_ONLY => Some(1),
+        _ => None,
+    }
+}
+
+/// The part of a `width` x `height` region at (`x`, `y`) inside the LFB window, as
+/// (width, height); zero when it lies wholly outside. 3dfx's library does not clip and
+/// lets rows past the window run into texture and register space; the window is the
+/// most any LFB address can reach.
+pub fn clip_to_window(x: u32, y: u32, width: u32, height: u32) -> (u32, u32) {
+    let width = width.min(LFB_WINDOW.saturating_sub(x));
+    let height = height.min(LFB_WINDOW.saturating_sub(y));
+    if width == 0 || height == 0 {
+        (0, 0)
+    } else {
+        (width, height)
     }
 }
 
@@ -163,6 +191,7 @@ impl crate::Glide {
         if format == GR_LFB_SRC_FMT_RLE16 {
             return false;
         }
+        let (width, height) = clip_to_window(x, y, width, height);
         let Some(info) = self.lfb_lock_hw(
             GR_LFB_WRITE_ONLY | GR_LFB_NOIDLE,
             buffer,
@@ -172,13 +201,14 @@ impl crate::Glide {
         ) else {
             return false;
         };
+        // Source bytes past `src` read as 0; offsets saturate instead of wrapping.
         let byte = |i: usize| u32::from(src.get(i).copied().unwrap_or(0));
-        let half = |i: usize| byte(i) | (byte(i + 1) << 8);
-        let word = |i: usize| half(i) | (half(i + 2) << 16);
-        let row_base = LFB_BASE + y * info.stride_in_bytes;
-        for row in 0..height as usize {
-            let s = row * stride;
-            let dst = row_base + row as u32 * info.stride_in_bytes;
+        let half = |i: usize| byte(i) | (byte(i.saturating_add(1)) << 8);
+        let word = |i: usize| half(i) | (half(i.saturating_add(2)) << 16);
+        for row in 0..height {
+            // Inside the window after clipping: y + row < 1024, x + width <= 1024.
+            let s = (row as usize).saturating_mul(stride);
+            let dst = LFB_BASE + (y + row) * info.stride_in_bytes;
             if info.stride_in_bytes == 2048 {
                 let mut addr = dst + 2 * x;
                 let mut i = 0usize;
@@ -189,16 +219,17 @@ impl crate::Glide {
                     i = 2;
                 }
                 while i + 4 <= len {
-                    self.hw.w(addr, word(s + i));
+                    self.hw.w(addr, word(s.saturating_add(i)));
                     addr += 4;
                     i += 4;
                 }
                 if i + 2 <= len {
-                    self.hw.w16(addr, half(s + i) as u16);
+                    self.hw.w16(addr, half(s.saturating_add(i)) as u16);
                 }
             } else {
                 for k in 0..width {
-                    self.hw.w(dst + 4 * (x + k), word(s + 4 * k as usize));
+                    self.hw
+                        .w(dst + 4 * (x + k), word(s.saturating_add(4 * k as usize)));
                 }
             }
         }
@@ -229,13 +260,16 @@ impl crate::Glide {
         {
             return false;
         }
+        let (width, height) = clip_to_window(x, y, width, height);
         for row in 0..height {
             for col in 0..width {
                 let addr = LFB_BASE + (y + row) * 2048 + 2 * (x + col);
                 let w = self.hw.r(addr & !3);
                 let px = if addr & 2 != 0 { w >> 16 } else { w & 0xffff } as u16;
-                let o = row as usize * stride + 2 * col as usize;
-                if let Some(d) = dst.get_mut(o..o + 2) {
+                let o = (row as usize)
+                    .saturating_mul(stride)
+                    .saturating_add(2 * col as usize);
+                if let Some(d) = dst.get_mut(o..o.saturating_add(2)) {
                     d.copy_from_slice(&px.to_le_bytes());
                 }
             }

@@ -28,6 +28,7 @@ pub mod get;
 mod hw;
 pub mod init;
 pub mod lfb;
+pub mod saved;
 pub mod state;
 pub mod tex;
 pub mod video;
@@ -40,6 +41,8 @@ pub use lfb::LfbInfo;
 pub use sst1_regs::RegisterBus;
 pub use state::GlideState;
 pub use tex::TexInfo;
+
+use std::borrow::Cow;
 
 use hw::bits::{DRAWBUFFER_BACK, ENRECTCLIP, ENZBIAS, RGBWRMASK, SEQ_8_DOWNLD, ZAWRMASK};
 use hw::Hw;
@@ -809,9 +812,9 @@ impl Glide {
     /// `grVertexLayout`: `param` is a `GR_PARAM_*`, `offset` in bytes.
     pub fn vertex_layout(&mut self, param: u32, offset: i32, mode: u32) {
         if self.check(
-            offset < 0 || offset % 4 != 0 || offset > 1024,
+            !draw::offset_ok(offset),
             "grVertexLayout",
-            "offset must be a non-negative multiple of 4",
+            "offset must be a multiple of 4 from 0 to 1024",
         ) || self.check(
             mode > GR_PARAM_ENABLE,
             "grVertexLayout",
@@ -879,6 +882,18 @@ impl Glide {
 
     /// `grDrawVertexArray`: `mode` is `GR_POINTS` .. `GR_TRIANGLE_FAN_CONTINUE`.
     pub fn draw_vertex_array(&mut self, mode: u32, vertices: &[&[f32]]) {
+        self.draw_vertex_array_with(mode, vertices.len(), |i| Cow::Borrowed(vertices[i]));
+    }
+
+    /// `grDrawVertexArray` over `count` vertices that `vertex(i)` gives, each asked for
+    /// once and in order (the C ABI reads them from the program's memory one at a time,
+    /// so drawing needs no memory in proportion to `count`).
+    pub fn draw_vertex_array_with<'v>(
+        &mut self,
+        mode: u32,
+        count: usize,
+        vertex: impl FnMut(usize) -> Cow<'v, [f32]>,
+    ) {
         if self.check(
             mode > GR_TRIANGLE_FAN_CONTINUE,
             "grDrawVertexArray",
@@ -886,10 +901,11 @@ impl Glide {
         ) {
             return;
         }
-        self.draw_list(mode, vertices);
+        self.draw_list(mode, count, vertex);
     }
 
-    /// `grDrawVertexArrayContiguous`: `count` vertices `stride` bytes apart in `data`.
+    /// `grDrawVertexArrayContiguous`: `count` vertices `stride` bytes apart in `data`;
+    /// a vertex that starts past the end of `data` reads as zeros.
     pub fn draw_vertex_array_contiguous(
         &mut self,
         mode: u32,
@@ -898,7 +914,30 @@ impl Glide {
         stride: usize,
     ) {
         if self.check(
-            stride == 0 || stride % 4 != 0,
+            stride % 4 != 0,
+            "grDrawVertexArrayContiguous",
+            "stride must be a positive multiple of 4",
+        ) {
+            return;
+        }
+        let words = stride / 4;
+        self.draw_vertex_array_contiguous_with(mode, count, stride, |i| {
+            let start = i.saturating_mul(words);
+            Cow::Borrowed(data.get(start..).unwrap_or(&[]))
+        });
+    }
+
+    /// `grDrawVertexArrayContiguous` over `count` vertices `stride` bytes apart that
+    /// `vertex(i)` gives (see [`Glide::draw_vertex_array_with`]).
+    pub fn draw_vertex_array_contiguous_with<'v>(
+        &mut self,
+        mode: u32,
+        count: usize,
+        stride: usize,
+        vertex: impl FnMut(usize) -> Cow<'v, [f32]>,
+    ) {
+        if self.check(
+            stride == 0,
             "grDrawVertexArrayContiguous",
             "stride must be a positive multiple of 4",
         ) || self.check(
@@ -908,11 +947,7 @@ impl Glide {
         ) {
             return;
         }
-        let words = stride / 4;
-        let verts: Vec<&[f32]> = (0..count)
-            .map(|i| data.get(i * words..).unwrap_or(&[]))
-            .collect();
-        self.draw_list(mode, &verts);
+        self.draw_list(mode, count, vertex);
     }
 
     /// `grAADrawTriangle`: the triangle plus alpha-ramped edge triangles outside the
@@ -1156,9 +1191,9 @@ impl Glide {
         if self.check_tmu("grTexDownloadMipMapLevelPartial", tmu)
             || !self.tex_info_ok("grTexDownloadMipMapLevelPartial", &info, even_odd)
             || self.check(
-                t < 0 || max_t < t,
+                !tex::rows_ok(this_lod, aspect, t, max_t),
                 "grTexDownloadMipMapLevelPartial",
-                "invalid row range",
+                "invalid row range (t..=maxT must lie inside the level)",
             )
         {
             return false;
@@ -1367,6 +1402,10 @@ impl Glide {
         origin: u32,
         pixel_pipeline: bool,
     ) -> Option<LfbInfo> {
+        if lfb::lock_slot(ty).is_none() {
+            self.report(format!("grLfbLock: invalid lock type {ty:#x}"), false);
+            return None;
+        }
         let r = self.lfb_lock_hw(ty, buffer, write_mode, origin, pixel_pipeline);
         if r.is_none() {
             self.report(
@@ -1381,7 +1420,18 @@ impl Glide {
 
     /// `grLfbUnlock`.
     pub fn lfb_unlock(&mut self, ty: u32, buffer: u32) -> bool {
+        if lfb::lock_slot(ty).is_none() {
+            self.report(format!("grLfbUnlock: invalid lock type {ty:#x}"), false);
+            return false;
+        }
         self.lfb_unlock_hw(ty, buffer)
+    }
+
+    /// The buffer a lock of type `ty` (`GR_LFB_READ_ONLY` or `GR_LFB_WRITE_ONLY`, with
+    /// or without `GR_LFB_NOIDLE`) holds, if one does: `grLfbUnlock(ty, buffer)`
+    /// succeeds exactly when this is `Some(buffer)`.
+    pub fn lfb_locked_buffer(&self, ty: u32) -> Option<u32> {
+        self.lfb_locks[lfb::lock_slot(ty)?]
     }
 
     /// `grLfbWriteRegion`.

@@ -149,6 +149,13 @@ pub fn level_wh(lod: u32, aspect: i32) -> (u32, u32) {
     }
 }
 
+/// Whether rows `t..=max_t` lie inside level `lod` (`GR_LOD_LOG2_*`) of aspect
+/// `aspect`: what `grTexDownloadMipMapLevelPartial` may read of the caller's data.
+pub fn rows_ok(lod: u32, aspect: i32, t: i32, max_t: i32) -> bool {
+    let (_, height) = level_wh(lod, aspect);
+    0 <= t && t <= max_t && i64::from(max_t) < i64::from(height)
+}
+
 impl crate::Glide {
     fn tmu_write(&mut self, tmu: usize, regs: &[(u32, u32)]) {
         self.hw.packer();
