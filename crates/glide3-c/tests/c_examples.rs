@@ -47,11 +47,18 @@ struct Run {
 
 /// Compiles `examples/NAME.c` (or `crates/glide3-c/tests/NAME.c` for `tests/NAME`).
 fn build(name: &str, out: &Path) -> PathBuf {
+    compile(name, out, &[]).unwrap_or_else(|| panic!("compiling {name}.c failed"))
+}
+
+/// Compiles `examples/NAME.c` (or `crates/glide3-c/tests/NAME.c` for `tests/NAME`) with
+/// extra compiler flags; `None` if the compiler refuses.
+fn compile(name: &str, out: &Path, flags: &[&str]) -> Option<PathBuf> {
     let source = match name.strip_prefix("tests/") {
         Some(test) => repo().join(format!("crates/glide3-c/tests/{test}.c")),
         None => repo().join(format!("examples/{name}.c")),
     };
-    let exe = out.join(name.replace('/', "_"));
+    let suffix: String = flags.iter().map(|f| f.replace(['-', '='], "_")).collect();
+    let exe = out.join(format!("{}{suffix}", name.replace('/', "_")));
     let lib = lib_dir();
     assert!(
         lib.join("libglide3.so").exists(),
@@ -59,19 +66,21 @@ fn build(name: &str, out: &Path) -> PathBuf {
         lib.display()
     );
     let status = Command::new("cc")
-        .args(["-std=gnu17", "-Wall", "-Wextra", "-Werror", "-I"])
+        .args(["-std=gnu17", "-Wall", "-Wextra", "-Werror"])
+        .args(flags)
+        .arg("-I")
         .arg(repo().join("crates/glide3-c/include"))
         .arg(&source)
         .arg("-L")
         .arg(&lib)
         .arg("-lglide3")
         .arg("-lm")
+        .arg("-lpthread")
         .arg("-o")
         .arg(&exe)
         .status()
         .expect("run cc");
-    assert!(status.success(), "compiling {name}.c failed");
-    exe
+    status.success().then_some(exe)
 }
 
 fn build_and_run(name: &str) -> Run {
@@ -235,4 +244,56 @@ fn hostile_arguments_reach_the_error_callback() {
         String::from_utf8_lossy(&run.stderr)
     );
     assert!(run.status.success());
+}
+
+/// A hostile Glide program (tests/abuse.c: every item of the C-library part of the
+/// hostile-input review) prints "ok": no crash, no access outside its memory, no
+/// memory growing with a count, errors reported. Run plain under a 4 GiB address-space
+/// limit (so an unbounded read fails fast), and built with AddressSanitizer, which must
+/// report nothing.
+#[test]
+fn a_hostile_program_is_harmless() {
+    use std::os::unix::process::CommandExt;
+    let out = std::env::temp_dir().join(format!("glide3-c-test-{}-abuse", std::process::id()));
+    std::fs::create_dir_all(&out).expect("temp dir");
+    let exe = build("tests/abuse", &out);
+    let mut plain = Command::new(&exe);
+    plain.arg("plain").env("LD_LIBRARY_PATH", lib_dir());
+    // SAFETY: setrlimit is async-signal-safe; nothing else runs between fork and exec.
+    unsafe {
+        plain.pre_exec(|| {
+            let limit = libc::rlimit {
+                rlim_cur: 4 << 30,
+                rlim_max: 4 << 30,
+            };
+            if libc::setrlimit(libc::RLIMIT_AS, &limit) != 0 {
+                return Err(std::io::Error::last_os_error());
+            }
+            Ok(())
+        })
+    };
+    let run = plain.output().expect("run abuse");
+    assert_eq!(
+        String::from_utf8_lossy(&run.stdout),
+        "ok\n",
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(run.status.success());
+
+    let asan = ["-fsanitize=address", "-fno-omit-frame-pointer", "-g"];
+    let Some(exe) = compile("tests/abuse", &out, &asan) else {
+        eprintln!("cc cannot build with AddressSanitizer here: the ASan run is skipped");
+        return;
+    };
+    let run = Command::new(&exe)
+        .arg("asan")
+        .env("LD_LIBRARY_PATH", lib_dir())
+        .env("ASAN_OPTIONS", "detect_leaks=1:exitcode=99")
+        .output()
+        .expect("run abuse under AddressSanitizer");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(!stderr.contains("AddressSanitizer"), "{stderr}");
+    assert_eq!(String::from_utf8_lossy(&run.stdout), "ok\n", "{stderr}");
+    assert!(run.status.success(), "{stderr}");
 }
