@@ -1813,3 +1813,93 @@ pub unsafe extern "C" fn gu3dfLoad(filename: *const c_char, info: *mut Gu3dfInfo
         1
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    static SEEN: Mutex<Vec<String>> = Mutex::new(Vec::new());
+
+    unsafe extern "C" fn record(msg: *const c_char, _fatal: FxBool) {
+        // SAFETY: entry() hands over a NUL-terminated string.
+        let s = unsafe { CStr::from_ptr(msg) }.to_string_lossy().into_owned();
+        SEEN.lock().unwrap_or_else(PoisonError::into_inner).push(s);
+    }
+
+    /// One test for everything that touches the process's state (tests run on threads of
+    /// one process): a panic inside an entry point, on purpose, never crosses the C
+    /// boundary; it reaches the error callback and Glide goes on working.
+    #[test]
+    fn a_panic_inside_an_entry_point_becomes_an_error() {
+        grErrorSetCallback(Some(record));
+        // With no lock held.
+        let r: u32 = entry("grPanicTest", || panic!("on purpose"));
+        assert_eq!(r, 0);
+        // With the process lock held: the mutex is poisoned, and recovered.
+        let r: FxBool = entry("grPanicLocked", || with_process(|_| panic!("while locked")));
+        assert_eq!(r, 0);
+        // Taking the lock again from inside (it would deadlock) panics instead.
+        let r: u32 = entry("grPanicNested", || with_process(|_| with_process(|_| 7)));
+        assert_eq!(r, 0);
+        // Errors raised inside one entry point arrive when it returns, in order, and the
+        // callback may call Glide.
+        grGlideInit();
+        let mut tmus = 0;
+        // SAFETY: a 4-byte answer into an i32.
+        assert_eq!(unsafe { grGet(GR_NUM_TMU, 4, &mut tmus) }, 4);
+        assert_eq!(tmus, 1);
+        grDepthBufferFunction(99);
+        grGlideShutdown();
+        let seen = SEEN.lock().unwrap_or_else(PoisonError::into_inner).clone();
+        assert_eq!(
+            seen,
+            [
+                "grPanicTest: internal error: on purpose",
+                "grPanicLocked: internal error: while locked",
+                "grPanicNested: internal error: Glide re-entered while it holds its state",
+                "grDepthBufferFunction: invalid compare function",
+            ]
+        );
+    }
+
+    /// Every function this library exports runs its body through `entry` under its own
+    /// name (the `forward!` macro through `stringify!`), so no panic can cross the C
+    /// boundary from any of them.
+    #[test]
+    fn every_exported_function_goes_through_entry() {
+        let src = include_str!("lib.rs");
+        let mut checked = 0;
+        for (at, _) in src.match_indices("extern \"C\" fn ") {
+            let rest = &src[at + "extern \"C\" fn ".len()..];
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '$')
+                .collect();
+            if name.is_empty() || name == "record" {
+                continue; // a function-pointer type, or this test's callback
+            }
+            let open = rest.find('{').expect("a body");
+            let mut depth = 0;
+            let body_len = rest[open..]
+                .char_indices()
+                .find_map(|(i, c)| {
+                    match c {
+                        '{' => depth += 1,
+                        '}' => depth -= 1,
+                        _ => {}
+                    }
+                    (depth == 0).then_some(i)
+                })
+                .expect("a closed body");
+            let body = &rest[open..open + body_len];
+            let wanted = if name == "$name" {
+                "entry(stringify!($name)".to_owned()
+            } else {
+                format!("entry(\"{name}\"")
+            };
+            assert!(body.contains(&wanted), "{name} does not go through entry()");
+            checked += 1;
+        }
+        assert!(checked > 50, "only {checked} functions found");
+    }
+}
