@@ -1822,7 +1822,9 @@ mod tests {
 
     unsafe extern "C" fn record(msg: *const c_char, _fatal: FxBool) {
         // SAFETY: entry() hands over a NUL-terminated string.
-        let s = unsafe { CStr::from_ptr(msg) }.to_string_lossy().into_owned();
+        let s = unsafe { CStr::from_ptr(msg) }
+            .to_string_lossy()
+            .into_owned();
         SEEN.lock().unwrap_or_else(PoisonError::into_inner).push(s);
     }
 
