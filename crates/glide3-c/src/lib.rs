@@ -1353,6 +1353,7 @@ pub unsafe extern "C" fn grLfbReadRegion(
 
 /// `GrTexInfo`.
 #[repr(C)]
+#[derive(Debug)]
 pub struct GrTexInfo {
     /// Smallest LOD.
     pub small_lod_log2: i32,
