@@ -130,13 +130,14 @@ fn create_temp(dir: &Path) -> Result<(PathBuf, File), OutputError> {
     })
 }
 
-/// Writes `bytes` to a new temporary file in `dir` and renames it to `target`, if
+/// Writes what `contents` writes to a new temporary file in `dir` and renames it to
+/// `target`, if
 /// `allowed` accepts what is at `target` now (`None`: nothing). The temporary file is
 /// removed on failure.
 fn replace(
     dir: &Path,
     target: &Path,
-    bytes: &[u8],
+    contents: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
     allowed: impl Fn(Option<&Metadata>) -> Result<(), &'static str>,
 ) -> Result<(), OutputError> {
     let check = || -> Result<(), OutputError> {
@@ -151,9 +152,10 @@ fn replace(
         })
     };
     check()?;
-    let (temp, mut file) = create_temp(dir)?;
-    let result = file
-        .write_all(bytes)
+    let (temp, file) = create_temp(dir)?;
+    let mut file = std::io::BufWriter::with_capacity(64 << 10, file);
+    let result = contents(&mut file)
+        .and_then(|()| file.flush())
         .map_err(io_error(&temp))
         .and_then(|()| {
             drop(file);
@@ -226,9 +228,19 @@ impl DumpDir {
     /// through a new temporary file renamed over `name`, if nothing is there or an earlier
     /// dump is. Returns the path written.
     pub fn write(&self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+        self.write_with(name, |out| out.write_all(bytes))
+    }
+
+    /// As [`DumpDir::write`], the contents written by `contents` (e.g.
+    /// [`Dump::write_le`](crate::Dump::write_le), with no copy of the dump in memory).
+    pub fn write_with(
+        &self,
+        name: &str,
+        contents: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+    ) -> Result<PathBuf, OutputError> {
         check_dump_name(name).map_err(|_| OutputError::BadName { name: quote(name) })?;
         let target = self.dir.join(name);
-        replace(&self.dir, &target, bytes, |meta| match meta {
+        replace(&self.dir, &target, contents, |meta| match meta {
             None => Ok(()),
             Some(meta) => {
                 if let Some(reason) = not_regular(meta) {
@@ -255,8 +267,13 @@ pub fn write_file_replacing(path: &Path, bytes: &[u8]) -> Result<(), OutputError
         Some(parent) if !parent.as_os_str().is_empty() => parent,
         _ => Path::new("."),
     };
-    replace(dir, path, bytes, |meta| match meta.and_then(not_regular) {
-        Some(reason) => Err(reason),
-        None => Ok(()),
-    })
+    replace(
+        dir,
+        path,
+        |out| out.write_all(bytes),
+        |meta| match meta.and_then(not_regular) {
+            Some(reason) => Err(reason),
+            None => Ok(()),
+        },
+    )
 }

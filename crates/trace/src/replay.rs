@@ -133,7 +133,24 @@ pub struct Dump {
 impl Dump {
     /// The dump file's contents: the values as little-endian `u16`.
     pub fn to_le_bytes(&self) -> Vec<u8> {
-        self.data.iter().flat_map(|v| v.to_le_bytes()).collect()
+        let mut out = Vec::with_capacity(self.data.len() * 2);
+        for v in &self.data {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out
+    }
+
+    /// Writes the dump file's contents ([`Dump::to_le_bytes`]) to `out`, a piece at a time
+    /// (no copy of the whole dump).
+    pub fn write_le(&self, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        let mut piece = [0u8; 8192];
+        for values in self.data.chunks(piece.len() / 2) {
+            for (bytes, v) in piece.chunks_exact_mut(2).zip(values) {
+                bytes.copy_from_slice(&v.to_le_bytes());
+            }
+            out.write_all(&piece[..values.len() * 2])?;
+        }
+        Ok(())
     }
 }
 
@@ -442,7 +459,7 @@ pub fn write_dumps(dumps: &[Dump], out_dir: &Path) -> Result<Vec<PathBuf>, Repla
     let dir = DumpDir::existing(out_dir);
     dumps
         .iter()
-        .map(|dump| Ok(dir.write(&dump.file, &dump.to_le_bytes())?))
+        .map(|dump| Ok(dir.write_with(&dump.file, |out| dump.write_le(out))?))
         .collect()
 }
 

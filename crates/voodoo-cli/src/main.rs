@@ -347,7 +347,7 @@ impl<'a> DumpTarget<'a> {
                 empty.insert(dir)
             }
         };
-        Ok(dir.write(&dump.file, &dump.to_le_bytes())?)
+        Ok(dir.write_with(&dump.file, |out| dump.write_le(out))?)
     }
 }
 
