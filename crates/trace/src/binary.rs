@@ -234,10 +234,18 @@ impl<R: std::io::Read> BinaryReader<R> {
     pub fn new(mut input: R) -> Result<Self, BinaryError> {
         const HEADER: &str = "the header";
         let mut fixed = [0u8; HEADER_LEN as usize];
-        read_full(&mut input, &mut fixed, 0, HEADER)?;
-        if fixed[..8] != MAGIC {
+        // The magic first: an input that does not start with it is not ours, short or not.
+        let mut magic = Vec::with_capacity(MAGIC.len());
+        std::io::Read::read_to_end(
+            &mut <&mut R as std::io::Read>::take(&mut input, MAGIC.len() as u64),
+            &mut magic,
+        )
+        .map_err(|e| io_error(0, &e))?;
+        if magic != MAGIC {
             return Err(BinaryError::BadMagic);
         }
+        fixed[..MAGIC.len()].copy_from_slice(&magic);
+        read_full(&mut input, &mut fixed[MAGIC.len()..], 0, HEADER)?;
         let u16_at = |at: usize| u16::from_le_bytes([fixed[at], fixed[at + 1]]);
         let u32_at = |at: usize| {
             u32::from_le_bytes([fixed[at], fixed[at + 1], fixed[at + 2], fixed[at + 3]])
@@ -508,9 +516,6 @@ fn read_full(
 /// handles that): at most [`MAX_TRACE_OPS`](crate::MAX_TRACE_OPS) ops. Never panics, and
 /// allocates nothing from the header's counts, whatever the bytes.
 pub fn decode_binary(bytes: &[u8]) -> Result<Trace, BinaryError> {
-    if !bytes.starts_with(&MAGIC) {
-        return Err(BinaryError::BadMagic);
-    }
     let mut ops = Vec::new();
     for op in BinaryReader::new(bytes)? {
         if ops.len() == crate::MAX_TRACE_OPS {
