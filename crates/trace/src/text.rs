@@ -18,7 +18,7 @@
 //! [`TextReader`] parses a line at a time from any [`BufRead`], so a trace of any length is
 //! read in constant memory; a line is at most [`MAX_LINE`] bytes (comment included).
 //! [`parse_text`] reads a whole trace into memory, at most
-//! [`MAX_TRACE_OPS`](crate::MAX_TRACE_OPS) ops.
+//! [`MAX_TRACE_OPS`] ops.
 
 use std::fmt::Write as _;
 use std::io::{BufRead, ErrorKind};

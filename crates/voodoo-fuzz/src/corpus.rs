@@ -7,8 +7,8 @@ use sst1_trace::{encode_binary, write_text, Trace, TraceOp};
 
 /// How many of the repository's traces seed a run (the smallest files: quick to load).
 const TRACES: usize = 6;
-/// How many ops of a trace one seed holds.
-const SEED_OPS: usize = 300;
+/// How many ops of a trace one seed piece holds.
+pub const SEED_OPS: usize = 300;
 
 /// The repository's traces that seed a run.
 pub struct Repository {

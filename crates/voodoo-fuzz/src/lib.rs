@@ -1,7 +1,7 @@
 //! The fuzz harness of voodoo-rs: seeded mutation of hostile inputs, on the stable
 //! toolchain, with no coverage instrumentation.
 //!
-//! Each [`Target`](targets::Target) of [`TARGETS`](targets::TARGETS) is a function of an
+//! Each [`Target`] of [`TARGETS`] is a function of an
 //! input's bytes that panics only when an invariant breaks (a reader panicked, a round
 //! trip changed a trace, a streamed replay differs from one from memory, an error message
 //! is too long). [`run`] takes each target's seeds (pieces of the repository's traces
