@@ -16,6 +16,14 @@ const TEX_BASE: u32 = 0x80_0000;
 /// `initEnable` in PCI configuration space (spec 6).
 const PCI_INIT_ENABLE: u32 = 0x40;
 
+/// The aperture offset a bus address reaches (spec section 4): the card decodes the low
+/// 24 bits of a memory address (its 16 MiB window) and, every access being 32 bits wide,
+/// ignores bits 1:0 (no region's decode below reads them). A recorder logs this form, so
+/// that a recorded trace replays as the access did.
+pub const fn aperture_offset(bus_addr: u32) -> u32 {
+    bus_addr & 0x00ff_fffc
+}
+
 impl Board {
     /// The normal-map register offset and chip mask of a register-region address.
     fn decode_register(&self, addr: u32) -> (u32, u32) {
@@ -125,7 +133,7 @@ impl Board {
 
 impl RegisterBus for Board {
     fn write32(&mut self, bus_addr: u32, value: u32) {
-        let bus_addr = bus_addr & 0xff_ffff;
+        let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             self.write_register(bus_addr, value);
         } else if bus_addr < TEX_BASE {
@@ -136,7 +144,7 @@ impl RegisterBus for Board {
     }
 
     fn read32(&mut self, bus_addr: u32) -> u32 {
-        let bus_addr = bus_addr & 0xff_ffff;
+        let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             // Reads ignore the chip field and always come from the FBI (spec 5).
             let (offset, _) = self.decode_register(bus_addr);

@@ -18,6 +18,7 @@ pub mod reference;
 
 use serde::{Deserialize, Serialize};
 
+pub use bus::aperture_offset;
 pub use diagnostics::{Diagnostic, Diagnostics};
 pub use pixelfx::{PixelProfile, Stats};
 pub use reference::{vote, Reference};

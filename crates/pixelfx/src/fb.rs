@@ -144,13 +144,19 @@ impl FrameBuffer {
     }
 
     /// Copy out `width x height` words of a buffer starting at word `base` (row 0 first).
+    /// Words outside memory read as 0, as [`FrameBuffer::read`] does; each row is copied as
+    /// one slice.
     pub fn dump(&self, base: Option<usize>, width: u32, height: u32) -> Vec<u16> {
         let mut out = vec![0u16; (width * height) as usize];
-        if let Some(base) = base {
-            for y in 0..height as i32 {
-                for x in 0..width as i32 {
-                    out[(y as u32 * width + x as u32) as usize] = self.read(base, x, y);
-                }
+        let (Some(base), Ok(width @ 1..)) = (base, usize::try_from(width)) else {
+            return out;
+        };
+        let pitch = self.layout.row_pixels as usize;
+        for (y, row) in out.chunks_exact_mut(width).enumerate() {
+            let start = base + y * pitch;
+            let n = self.ram.len().saturating_sub(start).min(width);
+            if n > 0 {
+                row[..n].copy_from_slice(&self.ram[start..start + n]);
             }
         }
         out
@@ -170,6 +176,30 @@ mod tests {
         assert_eq!(fb.layout.row_pixels, 640);
         assert_eq!(fb.layout.rgb_offset, [Some(0), Some(0x96000), None]);
         assert_eq!(fb.layout.aux_offset, Some(0x12c000));
+    }
+
+    /// The row-wise dump equals a pixel-by-pixel read, inside memory and past its end.
+    #[test]
+    fn dump_equals_reads() {
+        let mut fb = FrameBuffer::new(2);
+        for (i, w) in fb.ram.iter_mut().enumerate() {
+            *w = (i as u16).wrapping_mul(7);
+        }
+        for (tiles, base, width, height) in
+            [(10, 0, 640, 480), (3, 900_000, 200, 100), (0, 5, 6, 4)]
+        {
+            fb.recompute_layout(tiles, 0x96, false);
+            let dump = fb.dump(Some(base), width, height);
+            let mut expected = Vec::new();
+            for y in 0..height as i32 {
+                for x in 0..width as i32 {
+                    expected.push(fb.read(base, x, y));
+                }
+            }
+            assert_eq!(dump, expected, "{tiles} tiles, base {base}");
+        }
+        assert_eq!(fb.dump(Some(0), 0, 480), Vec::<u16>::new());
+        assert_eq!(fb.dump(None, 2, 2), [0; 4]);
     }
 
     #[test]

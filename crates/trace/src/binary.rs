@@ -19,7 +19,9 @@
 //! ```
 //!
 //! A reader accepts a file whose `min_reader_version` is at most [`READER_VERSION`] and skips
-//! header bytes it does not know (up to `header_len`). Frame records carry no op of their
+//! header bytes it does not know (up to `header_len`). [`BinaryReader`] reads the records one
+//! at a time and trusts no count for an allocation; the header's counts are only checked
+//! against the records, at the end. Frame records carry no op of their
 //! own: decoding yields exactly the ops that were encoded, and the decoder checks that each
 //! swap is followed by its frame record. The same rules as the text parser apply (offsets,
 //! config values and order, dump names), so any decoded trace writes back as valid text.
@@ -89,6 +91,20 @@ pub enum BinaryError {
         offset: usize,
         /// What the field must hold.
         expected: &'static str,
+    },
+    /// The input could not be read.
+    #[error("byte {offset}: {message}")]
+    Io {
+        /// Where the item being read starts.
+        offset: usize,
+        /// What the OS said.
+        message: String,
+    },
+    /// A whole-trace decode ([`decode_binary`]) met more ops than it holds in memory.
+    #[error("more than {limit} ops, the most a whole trace read into memory may hold (replay streams traces of any length)")]
+    TooManyOps {
+        /// The limit, [`MAX_TRACE_OPS`](crate::MAX_TRACE_OPS).
+        limit: usize,
     },
     /// The header's counts or board do not match the records.
     #[error("header says {expected}, records hold {found}")]
@@ -182,196 +198,332 @@ pub fn encode_binary(trace: &Trace) -> Vec<u8> {
     out
 }
 
-/// A cursor over the input that reports truncation instead of panicking.
-struct Cursor<'a> {
-    bytes: &'a [u8],
-    pos: usize,
+/// The header fields a reader checks the records against.
+#[derive(Clone, Copy, Debug)]
+struct Header {
+    board: [u32; 3],
+    op_count: u64,
+    frame_count: u64,
 }
 
-impl<'a> Cursor<'a> {
-    fn take(
-        &mut self,
-        n: usize,
-        start: usize,
-        what: &'static str,
-    ) -> Result<&'a [u8], BinaryError> {
-        let end = self
-            .pos
-            .checked_add(n)
-            .filter(|&end| end <= self.bytes.len());
-        let end = end.ok_or(BinaryError::Truncated {
-            offset: start,
-            what,
-        })?;
-        let slice = &self.bytes[self.pos..end];
-        self.pos = end;
-        Ok(slice)
-    }
-
-    fn u8(&mut self, start: usize, what: &'static str) -> Result<u8, BinaryError> {
-        Ok(self.take(1, start, what)?[0])
-    }
-
-    fn u16(&mut self, start: usize, what: &'static str) -> Result<u16, BinaryError> {
-        let b = self.take(2, start, what)?;
-        Ok(u16::from_le_bytes([b[0], b[1]]))
-    }
-
-    fn u32(&mut self, start: usize, what: &'static str) -> Result<u32, BinaryError> {
-        let b = self.take(4, start, what)?;
-        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-    }
-
-    fn u64(&mut self, start: usize, what: &'static str) -> Result<u64, BinaryError> {
-        let lo = u64::from(self.u32(start, what)?);
-        let hi = u64::from(self.u32(start, what)?);
-        Ok(lo | hi << 32)
-    }
+/// Reads a binary trace op by op from `input` (not gzip-compressed;
+/// [`TraceReader`](crate::TraceReader) handles that): an iterator of [`TraceOp`]s that
+/// ends after the first error. Memory is constant: no count from the header is trusted
+/// for an allocation. The header's counts and board are checked against the records at the
+/// end of the input, so the last item of a trace that disagrees with its header is a
+/// [`BinaryError::HeaderMismatch`].
+pub struct BinaryReader<R> {
+    input: R,
+    /// Byte offset of the next unread byte.
+    pos: u64,
+    header: Header,
+    /// The board the `config` records set so far.
+    config: sst1_board::BoardConfig,
+    ops: u64,
+    frames: u64,
+    accessed: bool,
+    frame_due: bool,
+    done: bool,
 }
 
-/// Decodes a binary trace (not gzip-compressed; [`read_trace`](crate::read_trace) handles
-/// that). Never panics, whatever the bytes.
-pub fn decode_binary(bytes: &[u8]) -> Result<Trace, BinaryError> {
-    if !bytes.starts_with(&MAGIC) {
-        return Err(BinaryError::BadMagic);
-    }
-    let mut cur = Cursor {
-        bytes,
-        pos: MAGIC.len(),
-    };
-    const HEADER: &str = "the header";
-    let version = cur.u16(0, HEADER)?;
-    let min_reader_version = cur.u16(0, HEADER)?;
-    if min_reader_version > READER_VERSION {
-        return Err(BinaryError::TooNew {
-            version,
-            min_reader_version,
-        });
-    }
-    let header_len = cur.u32(0, HEADER)?;
-    if header_len < HEADER_LEN {
-        return Err(BinaryError::BadHeader {
-            expected: "header_len of at least 36",
-        });
-    }
-    let board: Vec<u32> = cur.take(4, 0, HEADER)?[..3]
-        .iter()
-        .map(|&b| u32::from(b))
-        .collect();
-    let op_count = cur.u64(0, HEADER)?;
-    let frame_count = cur.u64(0, HEADER)?;
-    cur.take(header_len as usize - HEADER_LEN as usize, 0, HEADER)?;
+/// What is being read, for [`BinaryError::Truncated`].
+const RECORD: &str = "a record";
 
-    // Each op takes at least 5 bytes, so a hostile count cannot make us over-allocate.
-    let capacity = (op_count as usize).min(bytes.len() / 5);
-    let mut ops = Vec::with_capacity(capacity);
-    let mut accessed = false;
-    let mut frames = 0u64;
-    let mut frame_due = false;
-    while cur.pos < bytes.len() {
-        let start = cur.pos;
-        const RECORD: &str = "a record";
-        let tag = cur.u8(start, RECORD)?;
-        if frame_due && tag != TAG_FRAME {
-            return Err(BinaryError::BadField {
-                offset: start,
-                expected: "a frame record after a swap",
+impl<R: std::io::Read> BinaryReader<R> {
+    /// Reads and checks the header.
+    pub fn new(mut input: R) -> Result<Self, BinaryError> {
+        const HEADER: &str = "the header";
+        let mut fixed = [0u8; HEADER_LEN as usize];
+        // The magic first: an input that does not start with it is not ours, short or not.
+        let mut magic = Vec::with_capacity(MAGIC.len());
+        std::io::Read::read_to_end(
+            &mut <&mut R as std::io::Read>::take(&mut input, MAGIC.len() as u64),
+            &mut magic,
+        )
+        .map_err(|e| io_error(0, &e))?;
+        if magic != MAGIC {
+            return Err(BinaryError::BadMagic);
+        }
+        fixed[..MAGIC.len()].copy_from_slice(&magic);
+        read_full(&mut input, &mut fixed[MAGIC.len()..], 0, HEADER)?;
+        let u16_at = |at: usize| u16::from_le_bytes([fixed[at], fixed[at + 1]]);
+        let u32_at = |at: usize| {
+            u32::from_le_bytes([fixed[at], fixed[at + 1], fixed[at + 2], fixed[at + 3]])
+        };
+        let u64_at = |at: usize| u64::from(u32_at(at)) | u64::from(u32_at(at + 4)) << 32;
+        let version = u16_at(8);
+        let min_reader_version = u16_at(10);
+        if min_reader_version > READER_VERSION {
+            return Err(BinaryError::TooNew {
+                version,
+                min_reader_version,
             });
         }
-        let bad = |expected| BinaryError::BadField {
-            offset: start,
-            expected,
+        let header_len = u32_at(12);
+        if header_len < HEADER_LEN {
+            return Err(BinaryError::BadHeader {
+                expected: "header_len of at least 36",
+            });
+        }
+        let header = Header {
+            board: [fixed[16], fixed[17], fixed[18]].map(u32::from),
+            op_count: u64_at(20),
+            frame_count: u64_at(28),
         };
-        let op = match tag {
-            TAG_CONFIG => {
-                if accessed {
-                    return Err(bad("config records before the first write or read"));
-                }
-                let key = match cur.u8(start, RECORD)? {
-                    0 => ConfigKey::FbiMb,
-                    1 => ConfigKey::Tmus,
-                    2 => ConfigKey::TmuMb,
-                    _ => return Err(bad("a config key code 0-2")),
-                };
-                let value = cur.u32(start, RECORD)?;
-                if !key.allowed().contains(&value) {
-                    return Err(bad(key.expected()));
-                }
-                TraceOp::Config { key, value }
-            }
-            TAG_PCI => {
-                let offset = cur.u32(start, RECORD)?;
-                check_pci_offset(offset).map_err(|_| bad(PCI_RULE))?;
-                TraceOp::Pci {
-                    offset,
-                    value: cur.u32(start, RECORD)?,
-                }
-            }
-            TAG_WRITE => {
-                accessed = true;
-                let addr = cur.u32(start, RECORD)?;
-                check_addr(addr).map_err(|_| bad(ADDR_RULE))?;
-                frame_due = crate::replay::is_swap(addr);
-                TraceOp::Write {
-                    addr,
-                    value: cur.u32(start, RECORD)?,
-                }
-            }
-            TAG_READ | TAG_READ_VALUE => {
-                accessed = true;
-                let addr = cur.u32(start, RECORD)?;
-                check_addr(addr).map_err(|_| bad(ADDR_RULE))?;
-                let value = if tag == TAG_READ_VALUE {
-                    Some(cur.u32(start, RECORD)?)
-                } else {
-                    None
-                };
-                TraceOp::Read { addr, value }
-            }
-            TAG_DUMP => {
-                let buffer = match cur.u8(start, RECORD)? {
-                    0 => DumpBuffer::Front,
-                    1 => DumpBuffer::Back,
-                    2 => DumpBuffer::Depth,
-                    3 => DumpBuffer::Aux,
-                    _ => return Err(bad("a dump buffer code 0-3")),
-                };
-                let len = cur.u8(start, RECORD)?;
-                let name = cur.take(usize::from(len), start, RECORD)?;
-                let file = std::str::from_utf8(name).map_err(|_| bad(DUMP_NAME_RULE))?;
-                check_dump_name(file).map_err(|_| bad(DUMP_NAME_RULE))?;
-                TraceOp::Dump {
-                    buffer,
-                    file: file.to_owned(),
-                }
-            }
-            TAG_FRAME => {
-                let number = cur.u32(start, RECORD)?;
-                if !frame_due || u64::from(number) != frames {
-                    return Err(bad("frame records only after a swap, numbered from 0"));
-                }
-                frame_due = false;
-                frames += 1;
-                continue;
-            }
-            tag => return Err(BinaryError::UnknownTag { offset: start, tag }),
-        };
-        ops.push(op);
+        // Skip header fields this reader does not know, in constant memory.
+        let extra = u64::from(header_len - HEADER_LEN);
+        let skipped = std::io::copy(
+            &mut <&mut R as std::io::Read>::take(&mut input, extra),
+            &mut std::io::sink(),
+        )
+        .map_err(|e| io_error(0, &e))?;
+        if skipped < extra {
+            return Err(BinaryError::Truncated {
+                offset: 0,
+                what: HEADER,
+            });
+        }
+        Ok(Self {
+            input,
+            pos: u64::from(header_len),
+            header,
+            config: sst1_board::BoardConfig::default(),
+            ops: 0,
+            frames: 0,
+            accessed: false,
+            frame_due: false,
+            done: false,
+        })
     }
-    if frame_due {
-        return Err(BinaryError::Truncated {
-            offset: bytes.len(),
-            what: "the frame record after the last swap",
-        });
+
+    /// The board configuration the header announces (checked against the `config`
+    /// records at the end).
+    pub fn header_board(&self) -> [u32; 3] {
+        self.header.board
     }
-    let trace = Trace { ops };
-    let config = trace.board_config();
-    let found = [config.fbi_mb, config.tmus, config.tmu_mb];
-    if (op_count, frame_count, &board[..]) != (trace.ops.len() as u64, frames, &found[..]) {
-        return Err(BinaryError::HeaderMismatch {
-            expected: format!("{op_count} ops, {frame_count} frames, board {board:?}"),
-            found: format!("{} ops, {frames} frames, board {found:?}", trace.ops.len()),
-        });
+
+    /// Reads `buf.len()` bytes of the record that starts at `start`.
+    fn read(&mut self, buf: &mut [u8], start: u64) -> Result<(), BinaryError> {
+        read_full(&mut self.input, buf, start, RECORD)?;
+        self.pos += buf.len() as u64;
+        Ok(())
     }
-    Ok(trace)
+
+    fn u8(&mut self, start: u64) -> Result<u8, BinaryError> {
+        let mut b = [0u8; 1];
+        self.read(&mut b, start)?;
+        Ok(b[0])
+    }
+
+    fn u32(&mut self, start: u64) -> Result<u32, BinaryError> {
+        let mut b = [0u8; 4];
+        self.read(&mut b, start)?;
+        Ok(u32::from_le_bytes(b))
+    }
+
+    /// The next record's first byte, or `None` at the end of the input.
+    fn tag(&mut self) -> Result<Option<u8>, BinaryError> {
+        let mut b = [0u8; 1];
+        loop {
+            match self.input.read(&mut b) {
+                Ok(0) => return Ok(None),
+                Ok(_) => {
+                    self.pos += 1;
+                    return Ok(Some(b[0]));
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                Err(e) => return Err(io_error(self.pos, &e)),
+            }
+        }
+    }
+
+    /// The checks at the end of the input: the last swap's frame record, and the header.
+    fn finish(&self) -> Result<(), BinaryError> {
+        if self.frame_due {
+            return Err(BinaryError::Truncated {
+                offset: offset(self.pos),
+                what: "the frame record after the last swap",
+            });
+        }
+        let c = self.config;
+        let found = [c.fbi_mb, c.tmus, c.tmu_mb];
+        let h = self.header;
+        if (h.op_count, h.frame_count, h.board) != (self.ops, self.frames, found) {
+            return Err(BinaryError::HeaderMismatch {
+                expected: format!(
+                    "{} ops, {} frames, board {:?}",
+                    h.op_count, h.frame_count, h.board
+                ),
+                found: format!("{} ops, {} frames, board {found:?}", self.ops, self.frames),
+            });
+        }
+        Ok(())
+    }
+
+    /// The next op, `Ok(None)` at a valid end.
+    fn record(&mut self) -> Result<Option<TraceOp>, BinaryError> {
+        loop {
+            let start = self.pos;
+            let Some(tag) = self.tag()? else {
+                self.finish()?;
+                return Ok(None);
+            };
+            let bad = |expected| BinaryError::BadField {
+                offset: offset(start),
+                expected,
+            };
+            if self.frame_due && tag != TAG_FRAME {
+                return Err(bad("a frame record after a swap"));
+            }
+            let op = match tag {
+                TAG_CONFIG => {
+                    if self.accessed {
+                        return Err(bad("config records before the first write or read"));
+                    }
+                    let key = match self.u8(start)? {
+                        0 => ConfigKey::FbiMb,
+                        1 => ConfigKey::Tmus,
+                        2 => ConfigKey::TmuMb,
+                        _ => return Err(bad("a config key code 0-2")),
+                    };
+                    let value = self.u32(start)?;
+                    if !key.allowed().contains(&value) {
+                        return Err(bad(key.expected()));
+                    }
+                    TraceOp::Config { key, value }
+                }
+                TAG_PCI => {
+                    let offset = self.u32(start)?;
+                    check_pci_offset(offset).map_err(|_| bad(PCI_RULE))?;
+                    TraceOp::Pci {
+                        offset,
+                        value: self.u32(start)?,
+                    }
+                }
+                TAG_WRITE => {
+                    self.accessed = true;
+                    let addr = self.u32(start)?;
+                    check_addr(addr).map_err(|_| bad(ADDR_RULE))?;
+                    let value = self.u32(start)?;
+                    self.frame_due = crate::replay::is_swap(addr);
+                    TraceOp::Write { addr, value }
+                }
+                TAG_READ | TAG_READ_VALUE => {
+                    self.accessed = true;
+                    let addr = self.u32(start)?;
+                    check_addr(addr).map_err(|_| bad(ADDR_RULE))?;
+                    let value = if tag == TAG_READ_VALUE {
+                        Some(self.u32(start)?)
+                    } else {
+                        None
+                    };
+                    TraceOp::Read { addr, value }
+                }
+                TAG_DUMP => {
+                    let buffer = match self.u8(start)? {
+                        0 => DumpBuffer::Front,
+                        1 => DumpBuffer::Back,
+                        2 => DumpBuffer::Depth,
+                        3 => DumpBuffer::Aux,
+                        _ => return Err(bad("a dump buffer code 0-3")),
+                    };
+                    let len = usize::from(self.u8(start)?);
+                    let mut name = [0u8; 255];
+                    self.read(&mut name[..len], start)?;
+                    let file =
+                        std::str::from_utf8(&name[..len]).map_err(|_| bad(DUMP_NAME_RULE))?;
+                    check_dump_name(file).map_err(|_| bad(DUMP_NAME_RULE))?;
+                    TraceOp::Dump {
+                        buffer,
+                        file: file.to_owned(),
+                    }
+                }
+                TAG_FRAME => {
+                    let number = self.u32(start)?;
+                    if !self.frame_due || u64::from(number) != self.frames {
+                        return Err(bad("frame records only after a swap, numbered from 0"));
+                    }
+                    self.frame_due = false;
+                    self.frames += 1;
+                    continue;
+                }
+                tag => {
+                    return Err(BinaryError::UnknownTag {
+                        offset: offset(start),
+                        tag,
+                    })
+                }
+            };
+            crate::apply_config(&mut self.config, &op);
+            self.ops += 1;
+            return Ok(Some(op));
+        }
+    }
+}
+
+impl<R: std::io::Read> Iterator for BinaryReader<R> {
+    type Item = Result<TraceOp, BinaryError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.done {
+            return None;
+        }
+        let item = self.record().transpose();
+        if !matches!(item, Some(Ok(_))) {
+            self.done = true;
+        }
+        item
+    }
+}
+
+/// A byte offset as the error types hold it.
+fn offset(pos: u64) -> usize {
+    usize::try_from(pos).unwrap_or(usize::MAX)
+}
+
+fn io_error(pos: u64, e: &std::io::Error) -> BinaryError {
+    BinaryError::Io {
+        offset: offset(pos),
+        message: e.to_string(),
+    }
+}
+
+/// Fills `buf`, or reports what was being read (at `start`) as truncated.
+fn read_full(
+    input: &mut impl std::io::Read,
+    buf: &mut [u8],
+    start: u64,
+    what: &'static str,
+) -> Result<(), BinaryError> {
+    let mut filled = 0;
+    while filled < buf.len() {
+        match input.read(&mut buf[filled..]) {
+            Ok(0) => {
+                return Err(BinaryError::Truncated {
+                    offset: offset(start),
+                    what,
+                })
+            }
+            Ok(n) => filled += n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(io_error(start, &e)),
+        }
+    }
+    Ok(())
+}
+
+/// Decodes a whole binary trace (not gzip-compressed; [`read_trace`](crate::read_trace)
+/// handles that): at most [`MAX_TRACE_OPS`](crate::MAX_TRACE_OPS) ops. Never panics, and
+/// allocates nothing from the header's counts, whatever the bytes.
+pub fn decode_binary(bytes: &[u8]) -> Result<Trace, BinaryError> {
+    let mut ops = Vec::new();
+    for op in BinaryReader::new(bytes)? {
+        if ops.len() == crate::MAX_TRACE_OPS {
+            return Err(BinaryError::TooManyOps {
+                limit: crate::MAX_TRACE_OPS,
+            });
+        }
+        ops.push(op?);
+    }
+    Ok(Trace { ops })
 }

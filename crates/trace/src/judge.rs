@@ -98,11 +98,19 @@ pub fn judge(goldens: &[&[u16]], ours: &[u16]) -> Judgement {
     j
 }
 
-/// Reads a golden dump: little-endian 16-bit values, gzip-compressed or not. `None` if
-/// the file is missing or unreadable.
+/// The largest golden dump [`load_golden`] reads, compressed or not: 64 MiB, twice the
+/// largest buffer a video mode can have (4095 × 4095 values of 2 bytes).
+pub const MAX_GOLDEN: u64 = 64 << 20;
+
+/// Reads a golden dump: little-endian 16-bit values, gzip-compressed or not, at most
+/// [`MAX_GOLDEN`] bytes either way. `None` if the file is missing, not a regular file
+/// (never opened, so a FIFO cannot block), unreadable or too large.
 pub fn load_golden(path: &Path) -> Option<Vec<u16>> {
-    let bytes = std::fs::read(path).ok()?;
-    let raw = crate::gunzip_if_needed(&bytes).ok()?;
+    if !std::fs::metadata(path).ok()?.is_file() {
+        return None;
+    }
+    let bytes = crate::read_file_bounded(path, MAX_GOLDEN).ok()?;
+    let raw = crate::gunzip_with_limit(&bytes, MAX_GOLDEN).ok()?;
     Some(
         raw.chunks_exact(2)
             .map(|b| u16::from_le_bytes([b[0], b[1]]))

@@ -8,14 +8,26 @@
 //! compact form for recording and fast replay, and both hold exactly the same [`TraceOp`]
 //! stream, so conversion is lossless in both directions (text comments aside).
 //!
-//! * [`read_trace`] / [`load_trace`]: read either form, gzip-compressed or not.
-//! * [`Recorder`]: wraps any [`RegisterBus`](sst1_regs::RegisterBus) and logs every call.
-//! * [`replay`] / [`execute`]: drive a [`Board`](sst1_board::Board) with a trace.
+//! * [`TraceReader`] / [`open_trace`] / [`stream_trace`]: read either form, gzip-compressed
+//!   or not, op by op, in memory independent of the trace's length.
+//! * [`read_trace`] / [`load_trace`]: read a whole trace into memory (bounded:
+//!   [`MAX_TRACE_OPS`], [`MAX_DECOMPRESSED`]).
+//! * [`Recorder`]: wraps any [`RegisterBus`](sst1_regs::RegisterBus) and logs every call
+//!   as the board decodes it.
+//! * [`execute_stream`] / [`execute_references_stream`]: drive one board, or the
+//!   three-reference vote, with a stream of ops, handing each dump to a sink when it is
+//!   reached; [`execute`] / [`execute_references`] / [`replay`] for ops in memory.
+//! * [`DumpDir`]: writes dumps into a folder without following links or replacing
+//!   anything but earlier dumps.
 //! * [`OpCounts`]: what a trace does (writes, triangles, fills, swaps, registers touched).
 //! * [`judge`]: the conformance pass rule for a dump against the reference goldens.
+//!
+//! Error messages that show input quote it with [`quote`], cut to a few dozen characters.
 
 pub mod binary;
 pub mod judge;
+pub mod output;
+mod read;
 mod recorder;
 mod replay;
 pub mod text;
@@ -25,13 +37,16 @@ use std::path::{Path, PathBuf};
 
 use sst1_board::{BoardConfig, BufferKind};
 
-pub use binary::{decode_binary, encode_binary, BinaryError};
-pub use recorder::Recorder;
+pub use binary::{decode_binary, encode_binary, BinaryError, BinaryReader};
+pub use output::{write_file_replacing, DumpDir, OutputError};
+pub use read::{open_trace, stream_trace, TraceReader, TraceStream, MAX_PREFIX_OPS};
+pub use recorder::{recorded_addr, recorded_pci_offset, Recorder, PCI_UNDECODED};
 pub use replay::{
-    execute, execute_references, replay, rgb565_to_rgb8, write_dumps, Dump, OpCounts,
-    ReferenceReplay, ReplayError, PROGRESS_STEP,
+    execute, execute_references, execute_references_stream, execute_stream, replay, rgb565_to_rgb8,
+    vote_buffer, write_dumps, Dump, OpCounts, ReferenceDump, ReferenceReplay, ReplayError,
+    PROGRESS_STEP,
 };
-pub use text::{parse_text, write_text, ParseError};
+pub use text::{parse_text, write_text, ParseError, TextReader};
 
 /// One `config` setting of the board a trace runs on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -219,6 +234,34 @@ pub fn check_dump_name(file: &str) -> Result<(), &'static str> {
     }
 }
 
+/// How much of a quoted piece of input an error message shows, in bytes.
+pub const QUOTE_MAX: usize = 40;
+
+/// Quotes a piece of input for an error message: in backticks, control characters
+/// escaped, and cut to about [`QUOTE_MAX`] bytes with its full length said, so that a
+/// hostile input cannot make a message long (or write terminal escapes to stderr). Every
+/// error message of this crate that shows input uses it.
+pub fn quote(input: &str) -> String {
+    let mut shown = String::new();
+    let mut cut = false;
+    for (at, c) in input.char_indices() {
+        if shown.len() >= QUOTE_MAX {
+            cut = at < input.len();
+            break;
+        }
+        if c.is_control() {
+            shown.extend(c.escape_default());
+        } else {
+            shown.push(c);
+        }
+    }
+    if cut {
+        format!("`{shown}…` ({} bytes)", input.len())
+    } else {
+        format!("`{shown}`")
+    }
+}
+
 /// A whole trace: the ops in order.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Trace {
@@ -232,40 +275,151 @@ impl Trace {
     pub fn board_config(&self) -> BoardConfig {
         let mut config = BoardConfig::default();
         for op in &self.ops {
-            if let TraceOp::Config { key, value } = *op {
-                match key {
-                    ConfigKey::FbiMb => config.fbi_mb = value,
-                    ConfigKey::Tmus => config.tmus = value,
-                    ConfigKey::TmuMb => config.tmu_mb = value,
-                }
-            }
+            apply_config(&mut config, op);
         }
         config
     }
 }
 
-/// Largest decompressed size accepted from a gzip stream (hostile-input guard).
+/// Applies `op` to `config` if it is a `config` op.
+pub(crate) fn apply_config(config: &mut BoardConfig, op: &TraceOp) {
+    if let TraceOp::Config { key, value } = *op {
+        match key {
+            ConfigKey::FbiMb => config.fbi_mb = value,
+            ConfigKey::Tmus => config.tmus = value,
+            ConfigKey::TmuMb => config.tmu_mb = value,
+        }
+    }
+}
+
+/// Largest decompressed size a whole-trace read ([`read_trace`], [`load_trace`],
+/// [`parse_text`]) or [`gunzip_if_needed`] accepts from a gzip stream (hostile-input
+/// guard). Streaming readers ([`TraceReader`]) hold no decompressed bytes and have no cap.
 pub const MAX_DECOMPRESSED: u64 = 1 << 30;
 
+/// Most ops a whole-trace read ([`read_trace`], [`load_trace`], [`parse_text`],
+/// [`decode_binary`]) holds in memory: 2^24 (about 16.8 million, 512 MiB), a hundred
+/// times the longest trace in the repository. Replay streams traces of any length.
+pub const MAX_TRACE_OPS: usize = 1 << 24;
+
 /// Gzip's magic bytes.
-const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+pub(crate) const GZIP_MAGIC: [u8; 2] = [0x1f, 0x8b];
+
+/// A reader that fails with [`std::io::ErrorKind::InvalidData`] once `inner` yields more
+/// than `limit` bytes, reading nothing beyond the limit (a decompression cap in constant
+/// memory).
+pub(crate) struct Capped<R> {
+    inner: R,
+    left: u64,
+    limit: u64,
+}
+
+impl<R> Capped<R> {
+    pub(crate) fn new(inner: R, limit: u64) -> Self {
+        Self {
+            inner,
+            left: limit,
+            limit,
+        }
+    }
+}
+
+/// The error of a [`Capped`] reader past its limit.
+fn too_large(limit: u64) -> std::io::Error {
+    let size = if limit % (1 << 30) == 0 {
+        format!("{} GiB", limit >> 30)
+    } else {
+        format!("{limit} bytes")
+    };
+    std::io::Error::new(
+        std::io::ErrorKind::InvalidData,
+        format!("decompressed trace larger than {size}"),
+    )
+}
+
+impl<R: Read> Read for Capped<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        if buf.is_empty() {
+            return Ok(0);
+        }
+        if self.left == 0 {
+            // At the limit: one more byte means the input is too large.
+            let mut probe = [0u8; 1];
+            return match self.inner.read(&mut probe)? {
+                0 => Ok(0),
+                _ => Err(too_large(self.limit)),
+            };
+        }
+        let want = buf
+            .len()
+            .min(usize::try_from(self.left).unwrap_or(usize::MAX));
+        let n = self.inner.read(&mut buf[..want])?;
+        self.left -= n as u64;
+        Ok(n)
+    }
+}
+
+/// Reads all of `input`, at most `limit` bytes: an [`std::io::ErrorKind::InvalidData`]
+/// error if there is more. The buffer never grows past `limit + 1` bytes, so memory is
+/// bounded by the limit (not by twice it, as with `read_to_end`).
+pub fn read_bounded(input: impl Read, limit: u64) -> std::io::Result<Vec<u8>> {
+    let limit_plus_one = usize::try_from(limit.saturating_add(1)).unwrap_or(usize::MAX);
+    let mut input = input.take(limit.saturating_add(1));
+    let mut out: Vec<u8> = Vec::new();
+    let mut chunk = vec![0u8; 64 << 10];
+    loop {
+        let n = match input.read(&mut chunk) {
+            Ok(0) => break,
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        let needed = out.len() + n;
+        if needed > out.capacity() {
+            // Double, but never past limit + 1 (the take above keeps `needed` within it).
+            let capacity = out
+                .capacity()
+                .saturating_mul(2)
+                .max(needed)
+                .min(limit_plus_one);
+            out.reserve_exact(capacity.max(needed) - out.len());
+        }
+        out.extend_from_slice(&chunk[..n]);
+    }
+    if out.len() as u64 > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("larger than {limit} bytes"),
+        ));
+    }
+    Ok(out)
+}
+
+/// Reads a whole file of at most `limit` bytes ([`read_bounded`]); the error names the
+/// path.
+pub fn read_file_bounded(path: &Path, limit: u64) -> Result<Vec<u8>, LoadError> {
+    let io = |source| LoadError::Io {
+        path: path.to_owned(),
+        source,
+    };
+    let file = std::fs::File::open(path).map_err(io)?;
+    read_bounded(file, limit).map_err(io)
+}
 
 /// Decompresses `bytes` if they start with gzip's magic bytes; returns them as they are
-/// otherwise.
+/// otherwise. At most [`MAX_DECOMPRESSED`] bytes, held once (the buffer never grows past
+/// the cap).
 pub fn gunzip_if_needed(bytes: &[u8]) -> std::io::Result<std::borrow::Cow<'_, [u8]>> {
+    gunzip_with_limit(bytes, MAX_DECOMPRESSED)
+}
+
+/// [`gunzip_if_needed`] with a cap of `limit` decompressed bytes.
+pub fn gunzip_with_limit(bytes: &[u8], limit: u64) -> std::io::Result<std::borrow::Cow<'_, [u8]>> {
     if !bytes.starts_with(&GZIP_MAGIC) {
         return Ok(std::borrow::Cow::Borrowed(bytes));
     }
-    let mut out = Vec::new();
-    flate2::read::MultiGzDecoder::new(bytes)
-        .take(MAX_DECOMPRESSED + 1)
-        .read_to_end(&mut out)?;
-    if out.len() as u64 > MAX_DECOMPRESSED {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            "decompressed trace larger than 1 GiB",
-        ));
-    }
+    let decoder = flate2::bufread::MultiGzDecoder::new(bytes);
+    let out = read_bounded(Capped::new(decoder, limit), limit)?;
     Ok(std::borrow::Cow::Owned(out))
 }
 
@@ -280,7 +434,7 @@ pub enum LoadError {
         /// What the OS said.
         source: std::io::Error,
     },
-    /// The text form is malformed.
+    /// The text form is malformed (or its gzip stream is).
     #[error(transparent)]
     Text(#[from] ParseError),
     /// The binary form is malformed.
@@ -291,31 +445,64 @@ pub enum LoadError {
         /// What is wrong.
         source: BinaryError,
     },
+    /// A whole-trace read met more than [`MAX_TRACE_OPS`] ops.
+    #[error("{file}: more than {limit} ops, the most a whole trace read into memory may hold (replay streams traces of any length)")]
+    TooManyOps {
+        /// The file's name.
+        file: String,
+        /// The limit.
+        limit: usize,
+    },
+    /// A stream that cannot be read twice holds more than [`MAX_PREFIX_OPS`] ops before
+    /// its first `w` or `r`, so its board (set by `config` ops, which may come anywhere
+    /// before the first `w` or `r`) is not known within bounded memory.
+    #[error("{file}: more than {limit} ops before the first write or read; cannot tell the board configuration from a stream without reading it twice (give a regular file)")]
+    LongPrefix {
+        /// The file's name.
+        file: String,
+        /// The limit.
+        limit: usize,
+    },
 }
 
-/// Reads a trace in either form from `bytes`: gzip is recognised by its magic bytes, the
-/// binary form by [`binary::MAGIC`], anything else is parsed as text. `file` names the
-/// source in error messages.
+/// Reads a whole trace in either form from `bytes`: gzip is recognised by its magic bytes,
+/// the binary form by [`binary::MAGIC`], anything else is parsed as text. `file` names
+/// the source in error messages. At most [`MAX_TRACE_OPS`] ops and [`MAX_DECOMPRESSED`]
+/// decompressed bytes; memory is the ops alone (no copy of the decompressed input).
 pub fn read_trace(file: &str, bytes: &[u8]) -> Result<Trace, LoadError> {
-    let bytes = gunzip_if_needed(bytes).map_err(|source| ParseError::Gzip {
-        file: file.to_owned(),
-        message: source.to_string(),
-    })?;
-    if bytes.starts_with(&binary::MAGIC) {
-        decode_binary(&bytes).map_err(|source| LoadError::Binary {
-            file: file.to_owned(),
-            source,
-        })
-    } else {
-        Ok(text::parse_plain_text(file, &bytes)?)
-    }
+    collect_ops(TraceReader::with_limit(
+        file,
+        bytes,
+        Some(MAX_DECOMPRESSED),
+    )?)
 }
 
-/// Reads a trace file in either form (see [`read_trace`]).
+/// Reads a whole trace file in either form (see [`read_trace`]; the same limits).
 pub fn load_trace(path: &Path) -> Result<Trace, LoadError> {
-    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
+    let file = std::fs::File::open(path).map_err(|source| LoadError::Io {
         path: path.to_owned(),
         source,
     })?;
-    read_trace(&path.display().to_string(), &bytes)
+    let name = path.display().to_string();
+    collect_ops(TraceReader::with_limit(
+        &name,
+        file,
+        Some(MAX_DECOMPRESSED),
+    )?)
+}
+
+/// Collects a reader's ops, at most [`MAX_TRACE_OPS`] of them.
+fn collect_ops(reader: TraceReader<'_>) -> Result<Trace, LoadError> {
+    let file = reader.file().to_owned();
+    let mut ops = Vec::new();
+    for op in reader {
+        if ops.len() == MAX_TRACE_OPS {
+            return Err(LoadError::TooManyOps {
+                file,
+                limit: MAX_TRACE_OPS,
+            });
+        }
+        ops.push(op?);
+    }
+    Ok(Trace { ops })
 }

@@ -8,11 +8,13 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::{mpsc, Arc};
 
 use sst1_board::{vote, Board, BoardConfig, BufferKind, Reference};
 use sst1_regs::{addr, RegisterBus};
 
-use crate::{DumpBuffer, Trace, TraceOp};
+use crate::output::{DumpDir, OutputError};
+use crate::{DumpBuffer, LoadError, Trace, TraceOp};
 
 /// First byte of the linear frame buffer in the aperture.
 const LFB_BASE: u32 = 0x40_0000;
@@ -73,15 +75,20 @@ impl OpCounts {
     pub fn of(trace: &Trace) -> Self {
         let mut counts = OpCounts::default();
         for op in &trace.ops {
-            match *op {
-                TraceOp::Config { .. } => {}
-                TraceOp::Pci { .. } => counts.pci += 1,
-                TraceOp::Read { .. } => counts.reads += 1,
-                TraceOp::Dump { .. } => counts.dumps += 1,
-                TraceOp::Write { addr, .. } => counts.count_write(addr),
-            }
+            counts.add(op);
         }
         counts
+    }
+
+    /// Counts one more op (for counting a stream).
+    pub fn add(&mut self, op: &TraceOp) {
+        match *op {
+            TraceOp::Config { .. } => {}
+            TraceOp::Pci { .. } => self.pci += 1,
+            TraceOp::Read { .. } => self.reads += 1,
+            TraceOp::Dump { .. } => self.dumps += 1,
+            TraceOp::Write { addr, .. } => self.count_write(addr),
+        }
     }
 
     fn count_write(&mut self, addr: u32) {
@@ -126,7 +133,24 @@ pub struct Dump {
 impl Dump {
     /// The dump file's contents: the values as little-endian `u16`.
     pub fn to_le_bytes(&self) -> Vec<u8> {
-        self.data.iter().flat_map(|v| v.to_le_bytes()).collect()
+        let mut out = Vec::with_capacity(self.data.len() * 2);
+        for v in &self.data {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out
+    }
+
+    /// Writes the dump file's contents ([`Dump::to_le_bytes`]) to `out`, a piece at a time
+    /// (no copy of the whole dump).
+    pub fn write_le(&self, out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        let mut piece = [0u8; 8192];
+        for values in self.data.chunks(piece.len() / 2) {
+            for (bytes, v) in piece.chunks_exact_mut(2).zip(values) {
+                bytes.copy_from_slice(&v.to_le_bytes());
+            }
+            out.write_all(&piece[..values.len() * 2])?;
+        }
+        Ok(())
     }
 }
 
@@ -142,33 +166,53 @@ pub fn rgb565_to_rgb8(value: u16) -> [u8; 3] {
 /// How many ops run between calls of the progress callback of [`execute`].
 pub const PROGRESS_STEP: usize = 1 << 16;
 
+/// Why a replay stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum ReplayError {
+    /// The trace is malformed or could not be read (the ops before the fault have run).
+    #[error(transparent)]
+    Load(#[from] LoadError),
+    /// A dump could not be written.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// A dump sink failed for a reason of its own.
+    #[error("{0}")]
+    Sink(String),
+}
+
+/// Runs one op on `board`; a `dump` op returns the buffer it saves.
+fn step(board: &mut Board, op: &TraceOp) -> Option<Dump> {
+    match op {
+        TraceOp::Config { .. } => {}
+        TraceOp::Pci { offset, value } => board.pci_write(*offset, *value),
+        TraceOp::Write { addr, value } => board.write32(*addr, *value),
+        TraceOp::Read { addr, .. } => {
+            board.read32(*addr);
+        }
+        TraceOp::Dump { buffer, file } => {
+            let (width, height) = board.display_size();
+            return Some(Dump {
+                buffer: *buffer,
+                file: file.clone(),
+                width,
+                height,
+                data: board.dump_buffer(buffer.kind()),
+            });
+        }
+    }
+    None
+}
+
 /// Runs `ops` on `board` in order and returns the buffers the `dump` ops saved.
 ///
 /// `config` ops do nothing (the board is built from [`Trace::board_config`] beforehand);
 /// a read's recorded value is not compared. `progress` is called with the number of ops
-/// done every [`PROGRESS_STEP`] ops and once at the end.
+/// done every [`PROGRESS_STEP`] ops and once at the end. The dumps are held in memory:
+/// [`execute_stream`] hands each to a sink instead.
 pub fn execute(ops: &[TraceOp], board: &mut Board, mut progress: impl FnMut(usize)) -> Vec<Dump> {
     let mut dumps = Vec::new();
     for (index, op) in ops.iter().enumerate() {
-        match op {
-            TraceOp::Config { .. } => {}
-            TraceOp::Pci { offset, value } => board.pci_write(*offset, *value),
-            TraceOp::Write { addr, value } => board.write32(*addr, *value),
-            TraceOp::Read { addr, .. } => {
-                board.read32(*addr);
-            }
-            TraceOp::Dump { buffer, file } => {
-                let (width, height) = board.display_size();
-                let data = board.dump_buffer(buffer.kind());
-                dumps.push(Dump {
-                    buffer: *buffer,
-                    file: file.clone(),
-                    width,
-                    height,
-                    data,
-                });
-            }
-        }
+        dumps.extend(step(board, op));
         if (index + 1) % PROGRESS_STEP == 0 {
             progress(index + 1);
         }
@@ -177,23 +221,62 @@ pub fn execute(ops: &[TraceOp], board: &mut Board, mut progress: impl FnMut(usiz
     dumps
 }
 
+/// Runs a stream of ops on `board` in order, as they are read, and hands each dump to
+/// `sink` when it is reached: memory does not grow with the trace's length or its number
+/// of dumps. Stops at the first bad op or failed dump (the ops before it have run).
+/// Returns the number of ops run. `progress` as for [`execute`].
+pub fn execute_stream(
+    ops: impl IntoIterator<Item = Result<TraceOp, LoadError>>,
+    board: &mut Board,
+    mut progress: impl FnMut(usize),
+    mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
+) -> Result<usize, ReplayError> {
+    let mut done = 0;
+    for op in ops {
+        if let Some(dump) = step(board, &op?) {
+            sink(dump)?;
+        }
+        done += 1;
+        if done % PROGRESS_STEP == 0 {
+            progress(done);
+        }
+    }
+    progress(done);
+    Ok(done)
+}
+
+/// A dump of the reference vote: each reference's buffer and the vote of the three.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ReferenceDump {
+    /// The dump voted pixel by pixel ([`sst1_board::vote`]): two of three, MAME's where
+    /// all differ.
+    pub voted: Dump,
+    /// Each reference's dump, in [`Reference::ALL`] order.
+    pub references: [Dump; 3],
+}
+
 /// A trace replayed once per reference emulator ([`execute_references`]).
 pub struct ReferenceReplay {
     /// Each reference's board after the last op, in [`Reference::ALL`] order.
     pub boards: [Board; 3],
     /// Each reference's dumps, in the same order.
     pub per_reference: [Vec<Dump>; 3],
-    /// The dumps voted pixel by pixel ([`sst1_board::vote`]): two of three, MAME's
-    /// where all differ.
+    /// The dumps voted pixel by pixel ([`sst1_board::vote`]): two of three, MAME's where
+    /// all differ.
     pub dumps: Vec<Dump>,
 }
 
 impl ReferenceReplay {
     /// A buffer of the boards' final state, voted pixel by pixel.
     pub fn vote_buffer(&self, which: BufferKind) -> Vec<u16> {
-        let [a, b, c] = self.boards.each_ref().map(|board| board.dump_buffer(which));
-        vote(&a, &b, &c)
+        vote_buffer(&self.boards, which)
     }
+}
+
+/// A buffer of three boards' state, voted pixel by pixel.
+pub fn vote_buffer(boards: &[Board; 3], which: BufferKind) -> Vec<u16> {
+    let [a, b, c] = boards.each_ref().map(|board| board.dump_buffer(which));
+    vote(&a, &b, &c)
 }
 
 /// Runs `ops` three times, each on a board built from `config` with one reference
@@ -201,83 +284,203 @@ impl ReferenceReplay {
 ///
 /// This is the conformance pass rule as a model: where the three profiles reproduce
 /// their emulators, the voted dumps are the goldens' two-of-three majority, whatever
-/// history each reference took to its pixels. It costs three replays. `progress` follows
-/// MAME's replay, as [`execute`]'s does.
+/// history each reference took to its pixels. It costs three replays. The dumps are held
+/// in memory ([`execute_references_stream`] hands each to a sink instead).
 pub fn execute_references(
     ops: &[TraceOp],
     config: BoardConfig,
     progress: impl FnMut(usize),
 ) -> ReferenceReplay {
-    let replay = |reference: Reference, progress: &mut dyn FnMut(usize)| {
-        let mut board = Board::new(config);
-        board.set_profile(reference.profile());
-        let dumps = execute(ops, &mut board, progress);
-        (board, dumps)
+    let mut dumps = Vec::new();
+    let mut per_reference: [Vec<Dump>; 3] = Default::default();
+    let result = execute_references_stream(
+        ops.iter().cloned().map(Ok),
+        config,
+        progress,
+        |dump: ReferenceDump| {
+            dumps.push(dump.voted);
+            for (list, dump) in per_reference.iter_mut().zip(dump.references) {
+                list.push(dump);
+            }
+            Ok(())
+        },
+    );
+    // Neither the ops (all valid) nor the sink (infallible) can fail.
+    let boards = match result {
+        Ok(boards) => boards,
+        Err(e) => unreachable!("in-memory reference replay failed: {e}"),
     };
-    let [mame, dosbox, box86] = Reference::ALL;
-    let (first, second, third) = std::thread::scope(|scope| {
-        let second = scope.spawn(|| replay(dosbox, &mut |_| {}));
-        let third = scope.spawn(|| replay(box86, &mut |_| {}));
-        let mut progress = progress;
-        let first = replay(mame, &mut progress);
-        let join = |handle: std::thread::ScopedJoinHandle<'_, (Board, Vec<Dump>)>| {
-            handle
-                .join()
-                .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-        };
-        (first, join(second), join(third))
-    });
-    let dumps = first
-        .1
-        .iter()
-        .zip(&second.1)
-        .zip(&third.1)
-        .map(|((a, b), c)| Dump {
-            buffer: a.buffer,
-            file: a.file.clone(),
-            width: a.width,
-            height: a.height,
-            data: vote(&a.data, &b.data, &c.data),
-        })
-        .collect();
     ReferenceReplay {
-        boards: [first.0, second.0, third.0],
-        per_reference: [first.1, second.1, third.1],
+        boards,
+        per_reference,
         dumps,
     }
 }
 
-/// A replay's output could not be written.
-#[derive(Debug, thiserror::Error)]
-#[error("{path}: {source}")]
-pub struct ReplayError {
-    /// The file that could not be written.
-    pub path: PathBuf,
-    /// What the OS said.
-    pub source: std::io::Error,
+/// Ops handed to the reference boards at a time.
+const CHUNK_OPS: usize = 4096;
+/// Chunks queued for each reference board (bounds the memory of the read-ahead).
+const CHUNKS_QUEUED: usize = 2;
+
+/// One reference board's thread: runs the chunks it receives and sends back each dump.
+fn reference_worker(
+    reference: Reference,
+    config: BoardConfig,
+    chunks: mpsc::Receiver<Arc<Vec<TraceOp>>>,
+    dumps: mpsc::Sender<Dump>,
+) -> Board {
+    let mut board = Board::new(config);
+    board.set_profile(reference.profile());
+    for chunk in chunks {
+        for op in chunk.iter() {
+            if let Some(dump) = step(&mut board, op) {
+                if dumps.send(dump).is_err() {
+                    return board;
+                }
+            }
+        }
+    }
+    board
 }
 
-/// Writes each dump to `out_dir`/its file name; returns the paths written.
+/// Runs a stream of ops on three boards, one per reference emulator's profile
+/// ([`Reference::profile`]), each on its own thread, reading the stream once; hands each
+/// dump, voted ([`sst1_board::vote`]) and per reference, to `sink` when all three have
+/// reached it. Memory is bounded: the ops are passed on in chunks of a few thousand, at
+/// most a few chunks ahead of the slowest board, and only the dump in hand is held.
+///
+/// Returns the three boards after the last op, in [`Reference::ALL`] order. Stops at the
+/// first bad op or failed dump. `progress` is called with the number of ops read every
+/// [`PROGRESS_STEP`] ops and once at the end.
+pub fn execute_references_stream(
+    ops: impl IntoIterator<Item = Result<TraceOp, LoadError>>,
+    config: BoardConfig,
+    mut progress: impl FnMut(usize),
+    mut sink: impl FnMut(ReferenceDump) -> Result<(), ReplayError>,
+) -> Result<[Board; 3], ReplayError> {
+    std::thread::scope(|scope| {
+        let mut senders = Vec::new();
+        let mut receivers = Vec::new();
+        let mut handles = Vec::new();
+        for reference in Reference::ALL {
+            let (chunk_tx, chunk_rx) = mpsc::sync_channel(CHUNKS_QUEUED);
+            let (dump_tx, dump_rx) = mpsc::channel();
+            senders.push(chunk_tx);
+            receivers.push(dump_rx);
+            handles
+                .push(scope.spawn(move || reference_worker(reference, config, chunk_rx, dump_tx)));
+        }
+        // Hands a chunk to every board; if its last op is a dump, waits for the three
+        // dumps and passes them on. `Ok(false)`: a board thread has stopped (it panicked;
+        // the join below reports it).
+        let mut dispatch = |chunk: Vec<TraceOp>| -> Result<bool, ReplayError> {
+            let ends_in_dump = matches!(chunk.last(), Some(TraceOp::Dump { .. }));
+            let chunk = Arc::new(chunk);
+            for tx in &senders {
+                if tx.send(Arc::clone(&chunk)).is_err() {
+                    return Ok(false);
+                }
+            }
+            if ends_in_dump {
+                let mut got = Vec::with_capacity(3);
+                for rx in &receivers {
+                    match rx.recv() {
+                        Ok(dump) => got.push(dump),
+                        Err(_) => return Ok(false),
+                    }
+                }
+                let Ok::<[Dump; 3], _>(references) = got.try_into() else {
+                    return Ok(false);
+                };
+                let [a, b, c] = &references;
+                let voted = Dump {
+                    buffer: a.buffer,
+                    file: a.file.clone(),
+                    width: a.width,
+                    height: a.height,
+                    data: vote(&a.data, &b.data, &c.data),
+                };
+                sink(ReferenceDump { voted, references })?;
+            }
+            Ok(true)
+        };
+        let mut outcome = Ok(());
+        let mut chunk = Vec::with_capacity(CHUNK_OPS);
+        let mut done = 0;
+        for op in ops {
+            let op = match op {
+                Ok(op) => op,
+                Err(e) => {
+                    outcome = Err(ReplayError::from(e));
+                    break;
+                }
+            };
+            let is_dump = matches!(op, TraceOp::Dump { .. });
+            chunk.push(op);
+            done += 1;
+            if done % PROGRESS_STEP == 0 {
+                progress(done);
+            }
+            if is_dump || chunk.len() == CHUNK_OPS {
+                let full = std::mem::replace(&mut chunk, Vec::with_capacity(CHUNK_OPS));
+                match dispatch(full) {
+                    Ok(true) => {}
+                    Ok(false) => break,
+                    Err(e) => {
+                        outcome = Err(e);
+                        break;
+                    }
+                }
+            }
+        }
+        if outcome.is_ok() && !chunk.is_empty() {
+            outcome = dispatch(chunk).map(|_| ());
+        }
+        progress(done);
+        drop(senders);
+        drop(receivers);
+        let mut boards = Vec::with_capacity(3);
+        for handle in handles {
+            match handle.join() {
+                Ok(board) => boards.push(board),
+                Err(panic) => std::panic::resume_unwind(panic),
+            }
+        }
+        outcome?;
+        boards
+            .try_into()
+            .map_err(|_| ReplayError::Sink("a reference board was lost".to_owned()))
+    })
+}
+
+/// Writes each dump to `out_dir`/its file name ([`DumpDir::write`]: never through a
+/// link, never over anything but an earlier dump); returns the paths written.
 pub fn write_dumps(dumps: &[Dump], out_dir: &Path) -> Result<Vec<PathBuf>, ReplayError> {
+    let dir = DumpDir::existing(out_dir);
     dumps
         .iter()
-        .map(|dump| {
-            let path = out_dir.join(&dump.file);
-            std::fs::write(&path, dump.to_le_bytes())
-                .map(|()| path.clone())
-                .map_err(|source| ReplayError { path, source })
-        })
+        .map(|dump| Ok(dir.write_with(&dump.file, |out| dump.write_le(out))?))
         .collect()
 }
 
-/// Runs `ops` on `board` and writes the dumps into `out_dir` (which must exist); returns
-/// the dumps.
+/// Runs a stream of ops on `board` and writes each dump into `out_dir` (which must
+/// exist) when it is reached ([`DumpDir::write`]); returns the number of dumps written.
 pub fn replay(
-    ops: &[TraceOp],
+    ops: impl IntoIterator<Item = Result<TraceOp, LoadError>>,
     board: &mut Board,
     out_dir: &Path,
-) -> Result<Vec<Dump>, ReplayError> {
-    let dumps = execute(ops, board, |_| {});
-    write_dumps(&dumps, out_dir)?;
-    Ok(dumps)
+) -> Result<usize, ReplayError> {
+    let dir = DumpDir::existing(out_dir);
+    let mut written = 0;
+    execute_stream(
+        ops,
+        board,
+        |_| {},
+        |dump| {
+            dir.write(&dump.file, &dump.to_le_bytes())?;
+            written += 1;
+            Ok(())
+        },
+    )?;
+    Ok(written)
 }

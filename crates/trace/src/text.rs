@@ -14,16 +14,27 @@
 //! has no reads. Besides the format's own rules the parser checks what a replayer relies
 //! on: offsets 4-aligned and inside the aperture (or configuration space), `config` values
 //! the board supports and before the first `w`/`r`, dump names that are bare file names.
+//!
+//! [`TextReader`] parses a line at a time from any [`BufRead`], so a trace of any length is
+//! read in constant memory; a line is at most [`MAX_LINE`] bytes (comment included).
+//! [`parse_text`] reads a whole trace into memory, at most
+//! [`MAX_TRACE_OPS`] ops.
 
 use std::fmt::Write as _;
+use std::io::{BufRead, ErrorKind};
 
 use crate::{
-    check_addr, check_dump_name, check_pci_offset, ConfigKey, DumpBuffer, Trace, TraceOp,
-    ADDR_RULE, DUMP_NAME_RULE, PCI_RULE,
+    check_addr, check_dump_name, check_pci_offset, quote, ConfigKey, DumpBuffer, Trace, TraceOp,
+    ADDR_RULE, DUMP_NAME_RULE, MAX_TRACE_OPS, PCI_RULE,
 };
 
+/// The longest line a text trace may have, in bytes, comment and line end included
+/// (1 MiB). The longest command is a `dump` with a 255-byte name; the limit keeps a
+/// reader's memory bounded on input without line ends (`/dev/zero`).
+pub const MAX_LINE: usize = 1 << 20;
+
 /// A malformed text trace. Every variant names the file and, where there is one, the
-/// 1-based line.
+/// 1-based line. Quoted input is cut to a few dozen characters ([`quote`]).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ParseError {
     /// The gzip stream is corrupt or too large.
@@ -34,6 +45,14 @@ pub enum ParseError {
         /// What the decompressor said.
         message: String,
     },
+    /// The input could not be read.
+    #[error("{file}: {message}")]
+    Io {
+        /// The file's name.
+        file: String,
+        /// What the OS said.
+        message: String,
+    },
     /// The line is not UTF-8.
     #[error("{file}:{line}: not UTF-8 text")]
     NotUtf8 {
@@ -42,14 +61,22 @@ pub enum ParseError {
         /// 1-based line number.
         line: usize,
     },
+    /// The line is longer than [`MAX_LINE`].
+    #[error("{file}:{line}: line longer than {MAX_LINE} bytes")]
+    LineTooLong {
+        /// The file's name.
+        file: String,
+        /// 1-based line number.
+        line: usize,
+    },
     /// The line starts with a word that is not a command.
-    #[error("{file}:{line}: unknown command `{found}`; expected config, pci, w, r or dump")]
+    #[error("{file}:{line}: unknown command {found}; expected config, pci, w, r or dump")]
     UnknownCommand {
         /// The file's name.
         file: String,
         /// 1-based line number.
         line: usize,
-        /// The word found.
+        /// The word found, quoted ([`quote`]).
         found: String,
     },
     /// A command's argument is missing or not what the command takes.
@@ -61,7 +88,7 @@ pub enum ParseError {
         line: usize,
         /// What the command takes there.
         expected: &'static str,
-        /// What the line holds there, quoted, or `end of line`.
+        /// What the line holds there, quoted ([`quote`]), or `end of line`.
         found: String,
     },
     /// A `config` line after the first `w` or `r`.
@@ -72,16 +99,152 @@ pub enum ParseError {
         /// 1-based line number.
         line: usize,
     },
+    /// A whole-trace read ([`parse_text`]) met more ops than it holds in memory.
+    #[error("{file}: more than {limit} ops, the most a whole trace read into memory may hold (replay streams traces of any length)")]
+    TooManyOps {
+        /// The file's name.
+        file: String,
+        /// The limit, [`MAX_TRACE_OPS`].
+        limit: usize,
+    },
 }
 
-/// Parses a text trace, gzip-compressed or not (recognised by its magic bytes). `file`
-/// names the source in error messages. Never panics, whatever the bytes.
+/// Parses a text trace, gzip-compressed or not (recognised by its magic bytes), into
+/// memory: at most [`MAX_TRACE_OPS`] ops and [`MAX_DECOMPRESSED`](crate::MAX_DECOMPRESSED)
+/// decompressed bytes. `file` names the source in error messages. Never panics, whatever
+/// the bytes.
 pub fn parse_text(file: &str, bytes: &[u8]) -> Result<Trace, ParseError> {
-    let bytes = crate::gunzip_if_needed(bytes).map_err(|e| ParseError::Gzip {
-        file: file.to_owned(),
-        message: e.to_string(),
-    })?;
-    parse_plain_text(file, &bytes)
+    if bytes.starts_with(&crate::GZIP_MAGIC) {
+        let gz = flate2::bufread::MultiGzDecoder::new(bytes);
+        let capped = crate::Capped::new(gz, crate::MAX_DECOMPRESSED);
+        let input = std::io::BufReader::new(capped);
+        collect_text(TextReader::new(file, input, true))
+    } else {
+        parse_plain_text(file, bytes)
+    }
+}
+
+/// Parses text that is already decompressed (at most [`MAX_TRACE_OPS`] ops).
+pub(crate) fn parse_plain_text(file: &str, bytes: &[u8]) -> Result<Trace, ParseError> {
+    collect_text(TextReader::new(file, bytes, false))
+}
+
+fn collect_text<R: BufRead>(reader: TextReader<R>) -> Result<Trace, ParseError> {
+    let file = reader.file.clone();
+    let mut ops = Vec::new();
+    for op in reader {
+        if ops.len() == MAX_TRACE_OPS {
+            return Err(ParseError::TooManyOps {
+                file,
+                limit: MAX_TRACE_OPS,
+            });
+        }
+        ops.push(op?);
+    }
+    Ok(Trace { ops })
+}
+
+/// Reads a text trace op by op from `input` (already decompressed): an iterator of
+/// [`TraceOp`]s that ends after the first error. Memory is one line, at most
+/// [`MAX_LINE`] bytes, whatever the trace's length.
+pub struct TextReader<R> {
+    file: String,
+    input: R,
+    /// Whether `input` decompresses gzip (read errors are then decompression errors).
+    compressed: bool,
+    /// Lines read so far (the 1-based number of the last one).
+    line: usize,
+    /// Whether a `w` or `r` has been read (no `config` may follow).
+    accessed: bool,
+    buf: Vec<u8>,
+    done: bool,
+}
+
+impl<R: BufRead> TextReader<R> {
+    /// A reader of `input`; `file` names it in error messages; `compressed` says whether
+    /// `input` is a decompressor (its read errors are then reported as such).
+    pub fn new(file: &str, input: R, compressed: bool) -> Self {
+        Self {
+            file: file.to_owned(),
+            input,
+            compressed,
+            line: 0,
+            accessed: false,
+            buf: Vec::new(),
+            done: false,
+        }
+    }
+
+    fn read_error(&self, error: std::io::Error) -> ParseError {
+        let file = self.file.clone();
+        let message = error.to_string();
+        if self.compressed {
+            ParseError::Gzip { file, message }
+        } else {
+            ParseError::Io { file, message }
+        }
+    }
+
+    /// Reads the next line into `buf` (without the `\n`); `Ok(false)` at the end of input.
+    fn read_line(&mut self) -> Result<bool, ParseError> {
+        self.buf.clear();
+        let mut any = false;
+        loop {
+            let chunk = match self.input.fill_buf() {
+                Ok(chunk) => chunk,
+                Err(e) if e.kind() == ErrorKind::Interrupted => continue,
+                Err(e) => return Err(self.read_error(e)),
+            };
+            if chunk.is_empty() {
+                return Ok(any);
+            }
+            any = true;
+            let (take, end) = match chunk.iter().position(|&b| b == b'\n') {
+                Some(i) => (i, true),
+                None => (chunk.len(), false),
+            };
+            if self.buf.len() + take >= MAX_LINE {
+                return Err(ParseError::LineTooLong {
+                    file: self.file.clone(),
+                    line: self.line + 1,
+                });
+            }
+            self.buf.extend_from_slice(&chunk[..take]);
+            self.input.consume(take + usize::from(end));
+            if end {
+                return Ok(true);
+            }
+        }
+    }
+}
+
+impl<R: BufRead> Iterator for TextReader<R> {
+    type Item = Result<TraceOp, ParseError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        while !self.done {
+            let result = match self.read_line() {
+                Ok(false) => {
+                    self.done = true;
+                    return None;
+                }
+                Ok(true) => {
+                    self.line += 1;
+                    parse_line(&self.file, self.line, &self.buf, &mut self.accessed)
+                }
+                Err(e) => Err(e),
+            };
+            match result {
+                Ok(None) => {}
+                Ok(Some(op)) => return Some(Ok(op)),
+                Err(e) => {
+                    self.done = true;
+                    return Some(Err(e));
+                }
+            }
+        }
+        None
+    }
 }
 
 /// The words of one line, with their position for error messages.
@@ -98,7 +261,7 @@ impl<'a> Line<'a> {
             line: self.number,
             expected,
             found: match found {
-                Some(word) => format!("`{word}`"),
+                Some(word) => quote(word),
                 None => "end of line".to_owned(),
             },
         }
@@ -148,88 +311,88 @@ pub fn parse_number(word: &str) -> Option<u32> {
 
 const VALUE: &str = "a 32-bit value (0x hex or decimal)";
 
-/// Parses text that is already decompressed.
-pub(crate) fn parse_plain_text(file: &str, bytes: &[u8]) -> Result<Trace, ParseError> {
-    let mut ops = Vec::new();
-    let mut accessed = false;
-    for (index, raw) in bytes.split(|&b| b == b'\n').enumerate() {
-        let number = index + 1;
-        let text = std::str::from_utf8(raw).map_err(|_| ParseError::NotUtf8 {
-            file: file.to_owned(),
-            line: number,
-        })?;
-        let text = text.split('#').next().unwrap_or("");
-        let mut line = Line {
-            file,
-            number,
-            words: text.split_ascii_whitespace(),
-        };
-        let Some(command) = line.words.next() else {
-            continue;
-        };
-        let op = match command {
-            "config" => {
-                if accessed {
-                    return Err(ParseError::ConfigAfterAccess {
-                        file: file.to_owned(),
-                        line: number,
-                    });
-                }
-                const KEY: &str = "a config key (fbi_mb, tmus or tmu_mb)";
-                let word = line.word(KEY)?;
-                let key = ConfigKey::from_name(word).ok_or_else(|| line.error(KEY, Some(word)))?;
-                let word = line.word(key.expected())?;
-                let value = parse_number(word)
-                    .filter(|v| key.allowed().contains(v))
-                    .ok_or_else(|| line.error(key.expected(), Some(word)))?;
-                TraceOp::Config { key, value }
-            }
-            "pci" => {
-                let offset = line.checked(PCI_RULE, check_pci_offset)?;
-                let value = line.number(VALUE)?;
-                TraceOp::Pci { offset, value }
-            }
-            "w" => {
-                accessed = true;
-                let addr = line.checked(ADDR_RULE, check_addr)?;
-                let value = line.number(VALUE)?;
-                TraceOp::Write { addr, value }
-            }
-            "r" => {
-                accessed = true;
-                let addr = line.checked(ADDR_RULE, check_addr)?;
-                let value = match line.words.next() {
-                    None => None,
-                    Some(word) => {
-                        Some(parse_number(word).ok_or_else(|| line.error(VALUE, Some(word)))?)
-                    }
-                };
-                TraceOp::Read { addr, value }
-            }
-            "dump" => {
-                const BUFFER: &str = "a buffer (front, back, depth or aux)";
-                let word = line.word(BUFFER)?;
-                let buffer =
-                    DumpBuffer::from_name(word).ok_or_else(|| line.error(BUFFER, Some(word)))?;
-                let name = line.word(DUMP_NAME_RULE)?;
-                check_dump_name(name).map_err(|e| line.error(e, Some(name)))?;
-                TraceOp::Dump {
-                    buffer,
-                    file: name.to_owned(),
-                }
-            }
-            other => {
-                return Err(ParseError::UnknownCommand {
+/// Parses line `number` of `file` (without its `\n`): `None` for a blank or comment line.
+/// `accessed` says whether a `w` or `r` came before, and is set by one.
+fn parse_line(
+    file: &str,
+    number: usize,
+    raw: &[u8],
+    accessed: &mut bool,
+) -> Result<Option<TraceOp>, ParseError> {
+    let text = std::str::from_utf8(raw).map_err(|_| ParseError::NotUtf8 {
+        file: file.to_owned(),
+        line: number,
+    })?;
+    let text = text.split('#').next().unwrap_or("");
+    let mut line = Line {
+        file,
+        number,
+        words: text.split_ascii_whitespace(),
+    };
+    let Some(command) = line.words.next() else {
+        return Ok(None);
+    };
+    let op = match command {
+        "config" => {
+            if *accessed {
+                return Err(ParseError::ConfigAfterAccess {
                     file: file.to_owned(),
                     line: number,
-                    found: other.to_owned(),
-                })
+                });
             }
-        };
-        line.end()?;
-        ops.push(op);
-    }
-    Ok(Trace { ops })
+            const KEY: &str = "a config key (fbi_mb, tmus or tmu_mb)";
+            let word = line.word(KEY)?;
+            let key = ConfigKey::from_name(word).ok_or_else(|| line.error(KEY, Some(word)))?;
+            let word = line.word(key.expected())?;
+            let value = parse_number(word)
+                .filter(|v| key.allowed().contains(v))
+                .ok_or_else(|| line.error(key.expected(), Some(word)))?;
+            TraceOp::Config { key, value }
+        }
+        "pci" => {
+            let offset = line.checked(PCI_RULE, check_pci_offset)?;
+            let value = line.number(VALUE)?;
+            TraceOp::Pci { offset, value }
+        }
+        "w" => {
+            *accessed = true;
+            let addr = line.checked(ADDR_RULE, check_addr)?;
+            let value = line.number(VALUE)?;
+            TraceOp::Write { addr, value }
+        }
+        "r" => {
+            *accessed = true;
+            let addr = line.checked(ADDR_RULE, check_addr)?;
+            let value = match line.words.next() {
+                None => None,
+                Some(word) => {
+                    Some(parse_number(word).ok_or_else(|| line.error(VALUE, Some(word)))?)
+                }
+            };
+            TraceOp::Read { addr, value }
+        }
+        "dump" => {
+            const BUFFER: &str = "a buffer (front, back, depth or aux)";
+            let word = line.word(BUFFER)?;
+            let buffer =
+                DumpBuffer::from_name(word).ok_or_else(|| line.error(BUFFER, Some(word)))?;
+            let name = line.word(DUMP_NAME_RULE)?;
+            check_dump_name(name).map_err(|e| line.error(e, Some(name)))?;
+            TraceOp::Dump {
+                buffer,
+                file: name.to_owned(),
+            }
+        }
+        other => {
+            return Err(ParseError::UnknownCommand {
+                file: file.to_owned(),
+                line: number,
+                found: quote(other),
+            })
+        }
+    };
+    line.end()?;
+    Ok(Some(op))
 }
 
 /// Formats one op as a text line (without the newline).

@@ -2,6 +2,11 @@
 //!
 //! Trace formats are those of the `sst1-trace` crate: the plain-text write-log
 //! (`shared/docs/trace-text-format.md`) and our binary form, either gzip-compressed.
+//!
+//! Hostile input is expected: `replay`, `check` and `info` stream the trace (memory does not
+//! grow with its length or its number of dumps), every file read whole is read with a
+//! limit, and every file written goes through a temporary file renamed into place (see
+//! `sst1_trace::output`); dumps go to a fresh folder unless `--out` names one.
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -14,8 +19,9 @@ use sst1_regs::map;
 use sst1_trace::judge;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
-    encode_binary, execute, execute_references, load_trace, read_trace, rgb565_to_rgb8,
-    write_dumps, write_text, Dump, OpCounts, Trace,
+    encode_binary, execute_references_stream, execute_stream, load_trace, open_trace, quote,
+    read_file_bounded, rgb565_to_rgb8, stream_trace, vote_buffer, write_file_replacing, write_text,
+    Dump, DumpDir, OpCounts, ReplayError, TraceOp, TraceStream,
 };
 
 /// The trace `voodoo demo` replays: Gouraud-shaded triangles with 4×4 dithering.
@@ -39,9 +45,13 @@ enum Command {
     Replay {
         /// Trace file: text or binary, optionally gzip-compressed.
         trace: PathBuf,
-        /// Folder for the trace's dump files (created if missing).
-        #[arg(long, default_value = ".")]
-        out: PathBuf,
+        /// Folder for the trace's dump files (created if missing). A dump replaces only
+        /// an earlier dump there (a regular file with no other link), never follows a
+        /// link and never opens a FIFO. Default: a new folder in the current one, named
+        /// after the trace (`NAME-dumps`, or `NAME-dumps-2`, … if taken), made at the
+        /// first dump.
+        #[arg(long)]
+        out: Option<PathBuf>,
         /// Write the front (displayed) buffer at the end as a PNG.
         #[arg(long)]
         png: Option<PathBuf>,
@@ -59,15 +69,16 @@ enum Command {
         /// Write the counters as JSON to this file.
         #[arg(long, value_name = "FILE")]
         stats_json: Option<PathBuf>,
-        /// Accuracy profile as JSON for `--model single`: every disputed behaviour, or
-        /// only those to change, e.g. `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see
-        /// docs/accuracy.md).
+        /// Accuracy profile as JSON (at most 1 MiB) for `--model single`: every disputed
+        /// behaviour, or only those to change, e.g.
+        /// `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see docs/accuracy.md).
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
     },
     /// Replay a trace and judge each of its dumps against reference emulators' goldens
     /// with the conformance pass rule: every pixel where all goldens agree must match,
-    /// and every pixel where two of three agree. Exits with status 1 if a pixel fails.
+    /// and every pixel where two of three agree. Exits with status 1 if a pixel fails, if
+    /// the goldens folder is missing, or if a dump has fewer than two goldens.
     Check {
         /// Trace file: text or binary, optionally gzip-compressed.
         trace: PathBuf,
@@ -145,7 +156,7 @@ fn main() -> ExitCode {
         } => resolve_model(model, profile.as_deref()).and_then(|profile| {
             replay(
                 &trace,
-                &out,
+                out.as_deref(),
                 png.as_deref(),
                 stats,
                 stats_json.as_deref(),
@@ -187,30 +198,40 @@ fn resolve_model(
     }
 }
 
-/// Reads an accuracy profile from a JSON file; members left out keep their defaults.
+/// The largest accuracy profile read (a full profile is a few KiB of JSON).
+const MAX_PROFILE: u64 = 1 << 20;
+
+/// Reads an accuracy profile from a JSON file of at most [`MAX_PROFILE`] bytes; members
+/// left out keep their defaults.
 fn load_profile(path: Option<&Path>) -> Result<AccuracyProfile, String> {
     let Some(path) = path else {
         return Ok(AccuracyProfile::default());
     };
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+    let bytes = read_file_bounded(path, MAX_PROFILE).map_err(|e| e.to_string())?;
+    let text =
+        std::str::from_utf8(&bytes).map_err(|_| format!("{}: not UTF-8 text", path.display()))?;
+    serde_json::from_str(text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// What a replay leaves: a board to report on, the front buffer and the dumps.
+/// What a replay leaves: a board to report on and the front buffer.
 struct Replayed {
     /// The board (with the reference vote: the MAME-profile board).
     board: Board,
     /// The front buffer after the last op (voted, with the reference vote).
     front: Vec<u16>,
-    dumps: Vec<Dump>,
 }
 
-/// Runs a trace on one board with `profile`, or on one board per reference emulator and
-/// votes (`None`), with a progress bar when stderr is a terminal.
-fn run(trace: &Trace, profile: Option<AccuracyProfile>) -> Replayed {
+/// Runs a streamed trace on one board with `profile`, or on one board per reference
+/// emulator and votes (`None`), handing each dump (voted) to `sink` when it is reached,
+/// with a progress counter when stderr is a terminal.
+fn run(
+    stream: TraceStream<'_>,
+    profile: Option<AccuracyProfile>,
+    mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
+) -> Result<Replayed, String> {
     let bar = if std::io::stderr().is_terminal() {
-        let bar = ProgressBar::new(trace.ops.len() as u64);
-        if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} ops {elapsed}") {
+        let bar = ProgressBar::new_spinner();
+        if let Ok(style) = ProgressStyle::with_template("{spinner} {pos} ops {elapsed}") {
             bar.set_style(style);
         }
         bar
@@ -218,43 +239,41 @@ fn run(trace: &Trace, profile: Option<AccuracyProfile>) -> Replayed {
         ProgressBar::hidden()
     };
     let progress = |done: usize| bar.set_position(done as u64);
+    let config = stream.config();
     let replayed = match profile {
         Some(profile) => {
-            let mut board = Board::new(trace.board_config());
+            let mut board = Board::new(config);
             board.set_profile(profile);
-            let dumps = execute(&trace.ops, &mut board, progress);
-            let front = board.dump_buffer(BufferKind::Front);
-            Replayed {
-                board,
-                front,
-                dumps,
-            }
+            execute_stream(stream, &mut board, progress, sink).map(|_| {
+                let front = board.dump_buffer(BufferKind::Front);
+                Replayed { board, front }
+            })
         }
-        None => {
-            let replay = execute_references(&trace.ops, trace.board_config(), progress);
-            let front = replay.vote_buffer(BufferKind::Front);
-            let [board, _, _] = replay.boards;
-            Replayed {
-                board,
-                front,
-                dumps: replay.dumps,
-            }
-        }
+        None => execute_references_stream(stream, config, progress, |dump| sink(dump.voted)).map(
+            |boards| {
+                let front = vote_buffer(&boards, BufferKind::Front);
+                let [board, _, _] = boards;
+                Replayed { board, front }
+            },
+        ),
     };
     bar.finish_and_clear();
-    replayed
+    replayed.map_err(|e| e.to_string())
 }
 
-/// Writes the front buffer as an RGB PNG (RGB565 expanded by bit replication).
+/// Writes the front buffer as an RGB PNG (RGB565 expanded by bit replication), through a
+/// temporary file renamed over `path`.
 fn write_front_png(replayed: &Replayed, path: &Path) -> Result<(u32, u32), String> {
     let (width, height) = replayed.board.display_size();
     let pixels = &replayed.front;
     let rgb: Vec<u8> = pixels.iter().flat_map(|&p| rgb565_to_rgb8(p)).collect();
     let image = image::RgbImage::from_raw(width, height, rgb)
         .ok_or_else(|| format!("front buffer is not {width}x{height}"))?;
+    let mut png = std::io::Cursor::new(Vec::new());
     image
-        .save(path)
+        .write_to(&mut png, image::ImageFormat::Png)
         .map_err(|e| format!("{}: {e}", path.display()))?;
+    write_file_replacing(path, png.get_ref()).map_err(|e| e.to_string())?;
     Ok((width, height))
 }
 
@@ -278,21 +297,76 @@ impl Stats {
     }
 }
 
+/// The name of the default dump folder's trace: the file name without `.gz`, `.trace` or
+/// `.vtrace`.
+fn trace_stem(path: &Path) -> String {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let name = name.strip_suffix(".gz").unwrap_or(&name);
+    let name = name
+        .strip_suffix(".trace")
+        .or_else(|| name.strip_suffix(".vtrace"))
+        .unwrap_or(name);
+    if name.is_empty() || name == "." || name == ".." {
+        "trace".to_owned()
+    } else {
+        name.to_owned()
+    }
+}
+
+/// Where `voodoo replay` writes dumps: the folder `--out` names (made before the replay),
+/// or a fresh folder named after the trace, made at the first dump.
+struct DumpTarget<'a> {
+    trace: &'a Path,
+    dir: Option<DumpDir>,
+}
+
+impl<'a> DumpTarget<'a> {
+    fn new(trace: &'a Path, out: Option<&Path>) -> Result<Self, String> {
+        let dir = match out {
+            Some(out) => {
+                std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+                let mut dir = DumpDir::existing(out);
+                dir.protect(trace);
+                Some(dir)
+            }
+            None => None,
+        };
+        Ok(Self { trace, dir })
+    }
+
+    fn write(&mut self, dump: &Dump) -> Result<PathBuf, ReplayError> {
+        let dir = match &mut self.dir {
+            Some(dir) => dir,
+            empty => {
+                let mut dir = DumpDir::create_fresh(Path::new(""), &trace_stem(self.trace))?;
+                dir.protect(self.trace);
+                println!("writing dumps to {}", dir.path().display());
+                empty.insert(dir)
+            }
+        };
+        Ok(dir.write_with(&dump.file, |out| dump.write_le(out))?)
+    }
+}
+
 fn replay(
     path: &Path,
-    out: &Path,
+    out: Option<&Path>,
     png: Option<&Path>,
     stats: bool,
     stats_json: Option<&Path>,
     profile: Option<AccuracyProfile>,
 ) -> Result<(), String> {
-    let trace = load_trace(path).map_err(|e| e.to_string())?;
-    let replayed = run(&trace, profile);
-    let (board, dumps) = (&replayed.board, &replayed.dumps);
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    for written in write_dumps(dumps, out).map_err(|e| e.to_string())? {
+    let stream = open_trace(path).map_err(|e| e.to_string())?;
+    let mut target = DumpTarget::new(path, out)?;
+    let replayed = run(stream, profile, |dump| {
+        let written = target.write(&dump)?;
         println!("wrote {}", written.display());
-    }
+        Ok(())
+    })?;
+    let board = &replayed.board;
     if let Some(png) = png {
         let (w, h) = write_front_png(&replayed, png)?;
         println!("wrote {} ({w}x{h})", png.display());
@@ -315,18 +389,43 @@ fn replay(
         }
         if let Some(file) = stats_json {
             let text = serde_json::to_string_pretty(&s.to_json()).map_err(|e| e.to_string())?;
-            std::fs::write(file, text + "\n").map_err(|e| format!("{}: {e}", file.display()))?;
+            write_file_replacing(file, (text + "\n").as_bytes()).map_err(|e| e.to_string())?;
         }
     }
     Ok(())
 }
 
-/// `voodoo check`: one line per dump, then the totals; an error if any pixel fails.
+/// Checks that `goldens` is a folder holding at least one reference's golden folder.
+fn check_goldens_folder(goldens: &Path) -> Result<(), String> {
+    let meta = std::fs::metadata(goldens)
+        .map_err(|e| format!("goldens folder {}: {e}", goldens.display()))?;
+    if !meta.is_dir() {
+        return Err(format!(
+            "goldens folder {}: not a folder",
+            goldens.display()
+        ));
+    }
+    if !Reference::ALL
+        .iter()
+        .any(|r| goldens.join(r.golden_dir()).is_dir())
+    {
+        let names: Vec<&str> = Reference::ALL.iter().map(|r| r.golden_dir()).collect();
+        return Err(format!(
+            "goldens folder {}: holds none of the folders {}",
+            goldens.display(),
+            names.join(", ")
+        ));
+    }
+    Ok(())
+}
+
+/// `voodoo check`: one line per dump, then the totals; an error if any pixel fails or any
+/// dump has fewer than two goldens (or the goldens folder is missing).
 fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Result<(), String> {
-    let trace = load_trace(path).map_err(|e| e.to_string())?;
-    let replayed = run(&trace, profile);
-    let (mut consensus, mut majority, mut judged) = (0, 0, 0);
-    for dump in &replayed.dumps {
+    check_goldens_folder(goldens)?;
+    let stream = open_trace(path).map_err(|e| e.to_string())?;
+    let (mut consensus, mut majority, mut judged, mut unjudged) = (0, 0, 0, 0);
+    run(stream, profile, |dump| {
         let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
         let found: Vec<(&str, Vec<u16>)> = Reference::ALL
             .iter()
@@ -340,7 +439,8 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
             .collect();
         if found.len() < 2 {
             println!("{stem}: fewer than two goldens, not judged");
-            continue;
+            unjudged += 1;
+            return Ok(());
         }
         let buffers: Vec<&[u16]> = found.iter().map(|(_, g)| g.as_slice()).collect();
         let j = judge::judge(&buffers, &dump.data);
@@ -356,7 +456,8 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
         consensus += j.consensus_fail;
         majority += j.majority_fail;
         judged += 1;
-    }
+        Ok(())
+    })?;
     println!("{judged} dumps judged: {consensus} consensus and {majority} majority pixels fail");
     if consensus + majority > 0 {
         return Err(format!(
@@ -364,12 +465,21 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
             consensus + majority
         ));
     }
+    if unjudged > 0 {
+        return Err(format!(
+            "{unjudged} dumps have fewer than two goldens in {}",
+            goldens.display()
+        ));
+    }
+    if judged == 0 {
+        return Err("the trace has no dumps to judge".to_owned());
+    }
     Ok(())
 }
 
 fn demo(png: &Path) -> Result<(), String> {
-    let trace = read_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
-    let replayed = run(&trace, Some(AccuracyProfile::default()));
+    let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
+    let replayed = run(stream, Some(AccuracyProfile::default()), |_| Ok(()))?;
     let (w, h) = write_front_png(&replayed, png)?;
     println!(
         "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",
@@ -378,21 +488,32 @@ fn demo(png: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// How many dump lines `voodoo info` lists (the rest are counted).
+const INFO_DUMPS_LISTED: usize = 1000;
+
 fn info(path: &Path) -> Result<(), String> {
-    let trace = load_trace(path).map_err(|e| e.to_string())?;
-    let config = trace.board_config();
-    let c = OpCounts::of(&trace);
+    let stream = open_trace(path).map_err(|e| e.to_string())?;
+    let config = stream.config();
+    let mut c = OpCounts::default();
+    let mut ops = 0u64;
+    let mut dumps = Vec::new();
+    for op in stream {
+        let op = op.map_err(|e| e.to_string())?;
+        c.add(&op);
+        ops += 1;
+        if let TraceOp::Dump { buffer, file } = op {
+            if dumps.len() < INFO_DUMPS_LISTED {
+                dumps.push(format!("dump {} {file}", buffer.name()));
+            }
+        }
+    }
     println!(
         "board: fbi_mb {}, tmus {}, tmu_mb {}",
         config.fbi_mb, config.tmus, config.tmu_mb
     );
     println!(
-        "ops: {} ({} writes, {} reads, {} pci, {} dumps)",
-        trace.ops.len(),
-        c.writes,
-        c.reads,
-        c.pci,
-        c.dumps
+        "ops: {ops} ({} writes, {} reads, {} pci, {} dumps)",
+        c.writes, c.reads, c.pci, c.dumps
     );
     println!(
         "writes: {} register, {} frame buffer, {} texture",
@@ -402,10 +523,11 @@ fn info(path: &Path) -> Result<(), String> {
         "triangles: {}, fastfills: {}, swaps: {}",
         c.triangles, c.fastfills, c.swaps
     );
-    for op in &trace.ops {
-        if let sst1_trace::TraceOp::Dump { buffer, file } = op {
-            println!("dump {} {file}", buffer.name());
-        }
+    for line in &dumps {
+        println!("{line}");
+    }
+    if c.dumps > dumps.len() as u64 {
+        println!("... and {} more dumps", c.dumps - dumps.len() as u64);
     }
     println!("registers written:");
     for (offset, n) in &c.registers {
@@ -420,9 +542,10 @@ fn reg(register: &str, value: &str) -> Result<(), String> {
         Some(offset) => return Err(format!("{offset:#x} is not in the register space")),
         None => map::find(register)
             .map(|desc| desc.offset)
-            .ok_or_else(|| format!("no register named `{register}`"))?,
+            .ok_or_else(|| format!("no register named {}", quote(register)))?,
     };
-    let value = parse_number(value).ok_or_else(|| format!("`{value}` is not a 32-bit number"))?;
+    let value =
+        parse_number(value).ok_or_else(|| format!("{} is not a 32-bit number", quote(value)))?;
     println!(
         "{:#05x} {}",
         offset & 0x3fc,
@@ -446,7 +569,7 @@ fn convert(input: &Path, output: &Path) -> Result<(), String> {
     if gzip {
         bytes = gzip_bytes(&bytes).map_err(|e| format!("{}: {e}", output.display()))?;
     }
-    std::fs::write(output, bytes).map_err(|e| format!("{}: {e}", output.display()))?;
+    write_file_replacing(output, &bytes).map_err(|e| e.to_string())?;
     println!("wrote {} ({} ops)", output.display(), trace.ops.len());
     Ok(())
 }

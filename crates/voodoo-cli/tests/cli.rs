@@ -189,8 +189,10 @@ fn replay_takes_a_partial_profile() {
         r#"{"pixel": {"dither_2x2": "Mame"}}"#,
     )
     .unwrap();
+    // `--out .` each time: each replay replaces the earlier dump of the same name.
     let red_at_0_1 = |args: &[&str]| {
-        stdout(&voodoo(&dir, args));
+        let args = [args, &["--out", "."]].concat();
+        stdout(&voodoo(&dir, &args));
         let raw = std::fs::read(dir.join("fill_front.raw")).unwrap();
         let i = 2 * 640;
         u16::from_le_bytes([raw[i], raw[i + 1]]) >> 11
