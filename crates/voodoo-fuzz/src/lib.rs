@@ -20,6 +20,7 @@
 //! * `cargo run --release -p voodoo-fuzz -- --repro TARGET FILE` runs one saved input.
 
 pub mod corpus;
+pub mod glide;
 pub mod mutate;
 pub mod rng;
 pub mod targets;

@@ -59,6 +59,13 @@ pub const TARGETS: &[Target] = &[
         weight: 2,
     },
     Target {
+        name: "glide",
+        about: "a program of calls to every C entry point of libglide3 with hostile values: no internal error, crash or hang",
+        seeds: crate::glide::seeds,
+        run: crate::glide::run,
+        weight: 1,
+    },
+    Target {
         name: "recorder",
         about:
             "bus accesses of any address through Recorder<Board> read back and replay identically",

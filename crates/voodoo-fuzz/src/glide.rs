@@ -1,29 +1,19 @@
-//! Fuzzing the C ABI: a seeded random program of calls to every exported entry point,
+//! The `glide` target: a program of calls to every entry point of libglide3's C ABI,
 //! with hostile values (out-of-range enums, sizes, counts, coordinates, NaN and infinite
 //! floats, forged saved-state buffers, bad files) but memory that honours the Glide
-//! contract (every pointer covers what the API says it must). Nothing may panic (a
-//! panic would reach the error callback as "internal error"), crash or hang.
-//!
-//! CI runs a bounded number of calls. For a long run:
-//!
-//! ```sh
-//! VOODOO_FUZZ_SECS=3600 cargo test --release -p glide3-c --test fuzz_entry_points -- --nocapture
-//! ```
-//!
-//! `VOODOO_FUZZ_SEED` picks the first seed (default 1; each round of
-//! [`CALLS_PER_ROUND`] calls uses the next), `VOODOO_FUZZ_CALLS` the number of calls
-//! when no duration is given. A failure prints the seed and the last calls made.
+//! contract (every pointer covers what the API says it must). No call may panic (a
+//! panic reaches the error callback as "internal error", which fails the case), crash or
+//! hang. The input's bytes seed the program; each case runs [`CALLS_PER_CASE`] calls in
+//! a fresh session.
 
+use crate::rng::Rng;
 use glide::consts::*;
 use glide3::*;
 use std::ffi::{c_char, c_void, CStr};
 use std::sync::Mutex;
-use std::time::{Duration, Instant};
 
-/// Calls between two `grGlideShutdown`/`grGlideInit` pairs, each round with its seed.
-const CALLS_PER_ROUND: u64 = 2_000;
-/// Calls in CI.
-const DEFAULT_CALLS: u64 = 12_000;
+/// Calls of one case, in a fresh session.
+const CALLS_PER_CASE: usize = 40;
 
 /// What the error callback saw that it must never see.
 static INTERNAL: Mutex<Vec<String>> = Mutex::new(Vec::new());
@@ -32,20 +22,19 @@ unsafe extern "C" fn on_error(msg: *const c_char, _fatal: FxBool) {
     // SAFETY: libglide3 passes a NUL-terminated string.
     let msg = unsafe { CStr::from_ptr(msg) }.to_string_lossy();
     if msg.contains("internal error") {
-        INTERNAL.lock().unwrap().push(msg.into_owned());
+        INTERNAL
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .push(msg.into_owned());
     }
 }
 
-/// splitmix64.
-struct Rng(u64);
+/// The harness's generator, with the argument shapes the calls need.
+struct Gen(Rng);
 
-impl Rng {
+impl Gen {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
     fn below(&mut self, n: u64) -> u64 {
         self.next() % n.max(1)
@@ -56,7 +45,8 @@ impl Rng {
     /// An integer argument: mostly small (valid enum ranges), sometimes extreme.
     fn int(&mut self) -> u32 {
         match self.below(8) {
-            0 => [0, 1, 2, 3, 0xff, 0x100, 0x7fff_ffff, 0x8000_0000, u32::MAX][self.below(9) as usize],
+            0 => [0, 1, 2, 3, 0xff, 0x100, 0x7fff_ffff, 0x8000_0000, u32::MAX]
+                [self.below(9) as usize],
             1 => self.next() as u32,
             2 => self.below(0x10000) as u32,
             _ => self.below(16) as u32,
@@ -128,14 +118,16 @@ macro_rules! paste_call {
         $f($args.0, $args.1, $args.2, $args.3, $args.4)
     };
     ($f:ident, $args:ident, $a0:expr, $a1:expr, $a2:expr, $a3:expr, $a4:expr, $a5:expr, $a6:expr) => {
-        $f($args.0, $args.1, $args.2, $args.3, $args.4, $args.5, $args.6)
+        $f(
+            $args.0, $args.1, $args.2, $args.3, $args.4, $args.5, $args.6,
+        )
     };
 }
 
 const VERTEX_WORDS: usize = 260;
 
 struct Fuzz {
-    rng: Rng,
+    rng: Gen,
     mem: Arena,
 }
 
@@ -210,12 +202,24 @@ impl Fuzz {
             29 => c!(grLfbWriteColorSwizzle(r.i(), r.i())),
             30 => {
                 // Mostly offsets grVertexLayout accepts, so drawing reads them.
-                let offset = if r.chance(4) { r.i() } else { 4 * r.below(257) as i32 };
+                let offset = if r.chance(4) {
+                    r.i()
+                } else {
+                    4 * r.below(257) as i32
+                };
                 c!(grVertexLayout(r.int(), offset, r.int() & 1))
             }
             31 => c!(guGammaCorrectionRGB(r.float(), r.float(), r.float())),
             32 => c!(grTexClampMode(r.i(), r.i(), r.i())),
-            33 => c!(grTexCombine(r.i(), r.i(), r.i(), r.i(), r.i(), r.i(), r.i())),
+            33 => c!(grTexCombine(
+                r.i(),
+                r.i(),
+                r.i(),
+                r.i(),
+                r.i(),
+                r.i(),
+                r.i()
+            )),
             34 => c!(grTexDetailControl(r.i(), r.i(), r.byte(), r.float())),
             35 => c!(grTexFilterMode(r.i(), r.i(), r.i())),
             36 => c!(grTexLodBiasValue(r.i(), r.float())),
@@ -246,7 +250,13 @@ impl Fuzz {
                 format!("grGetString({p:#x})")
             }
             50 => c!(guFogTableIndexToW(r.i())),
-            51 => c!(grSplash(r.float(), r.float(), r.float(), r.float(), r.int())),
+            51 => c!(grSplash(
+                r.float(),
+                r.float(),
+                r.float(),
+                r.float(),
+                r.int()
+            )),
             52 => c!(grBufferNumPending()),
             53 => c!(grFinish()),
             54 => c!(grFlush()),
@@ -359,14 +369,19 @@ impl Fuzz {
             }
             10 | 11 => {
                 let big = self.rng.chance(8);
-                let pick = |r: &mut Rng| {
+                let pick = |r: &mut Gen| {
                     if big {
                         r.int()
                     } else {
                         r.below(1100) as u32
                     }
                 };
-                let (x, y, w, h) = (pick(&mut self.rng), pick(&mut self.rng), pick(&mut self.rng), pick(&mut self.rng));
+                let (x, y, w, h) = (
+                    pick(&mut self.rng),
+                    pick(&mut self.rng),
+                    pick(&mut self.rng),
+                    pick(&mut self.rng),
+                );
                 let fmt = self.rng.int() % 0x10;
                 let pad = self.rng.below(8) as usize * 2;
                 // A stride that covers the row, or 0 (every row the same); the data
@@ -379,9 +394,21 @@ impl Fuzz {
                 // and the arena covers it (rows past 1024 never are).
                 // SAFETY: see above.
                 let ok = unsafe {
-                    grLfbWriteRegion(buf, x, y, fmt, w, h, pipe, stride as i32, data.as_ptr() as *const c_void)
+                    grLfbWriteRegion(
+                        buf,
+                        x,
+                        y,
+                        fmt,
+                        w,
+                        h,
+                        pipe,
+                        stride as i32,
+                        data.as_ptr() as *const c_void,
+                    )
                 };
-                format!("grLfbWriteRegion({buf}, {x}, {y}, {fmt:#x}, {w}, {h}, stride {stride}) = {ok}")
+                format!(
+                    "grLfbWriteRegion({buf}, {x}, {y}, {fmt:#x}, {w}, {h}, stride {stride}) = {ok}"
+                )
             }
             12 => {
                 let (x, y) = (self.rng.below(1100) as u32, self.rng.below(1100) as u32);
@@ -392,13 +419,25 @@ impl Fuzz {
                 let buf = self.rng.i() % 4;
                 // SAFETY: as for the write: the clipped rows fit in `data`.
                 let ok = unsafe {
-                    grLfbReadRegion(buf, x, y, w, h, stride as u32, data.as_mut_ptr() as *mut c_void)
+                    grLfbReadRegion(
+                        buf,
+                        x,
+                        y,
+                        w,
+                        h,
+                        stride as u32,
+                        data.as_mut_ptr() as *mut c_void,
+                    )
                 };
                 format!("grLfbReadRegion({buf}, {x}, {y}, {w}, {h}, stride {stride}) = {ok}")
             }
             13 => {
                 let mut info = self.tex_info();
-                let (tmu, start, eo) = (self.rng.i() % 4, self.rng.int() % (5 << 20), self.rng.int() % 5);
+                let (tmu, start, eo) = (
+                    self.rng.i() % 4,
+                    self.rng.int() % (5 << 20),
+                    self.rng.int() % 5,
+                );
                 // SAFETY: GrTexInfo with texel data covering any mipmap.
                 unsafe {
                     match self.rng.below(4) {
@@ -415,7 +454,11 @@ impl Fuzz {
             }
             14 => {
                 let info = self.tex_info();
-                let (tmu, start, eo) = (self.rng.i() % 4, self.rng.int() % (5 << 20), self.rng.int() % 5);
+                let (tmu, start, eo) = (
+                    self.rng.i() % 4,
+                    self.rng.int() % (5 << 20),
+                    self.rng.int() % 5,
+                );
                 let (t, max_t) = (self.rng.i() % 300, self.rng.i() % 300);
                 let data = info.data as *const c_void;
                 // SAFETY: the texel arena covers a whole 256x256 16-bit level.
@@ -437,7 +480,11 @@ impl Fuzz {
             }
             15 => {
                 let info = self.tex_info();
-                let (tmu, start, eo) = (self.rng.i() % 4, self.rng.int() % (5 << 20), self.rng.int() % 5);
+                let (tmu, start, eo) = (
+                    self.rng.i() % 4,
+                    self.rng.int() % (5 << 20),
+                    self.rng.int() % 5,
+                );
                 // SAFETY: the texel arena covers a whole 256x256 16-bit level.
                 unsafe {
                     grTexDownloadMipMapLevel(
@@ -597,13 +644,8 @@ impl Fuzz {
     }
 }
 
-
-fn env_u64(name: &str) -> Option<u64> {
-    std::env::var(name).ok()?.parse().ok()
-}
-
 /// `.3df` files: a valid one, a truncated one, random bytes, /dev/zero, a missing one.
-fn files(dir: &std::path::Path, rng: &mut Rng) -> Vec<std::ffi::CString> {
+fn files(dir: &std::path::Path, rng: &mut Gen) -> Vec<std::ffi::CString> {
     std::fs::create_dir_all(dir).expect("scratch dir");
     let mut valid = b"3df v1.0\nrgb565\nlod range: 1 8\naspect ratio: 1 1\n".to_vec();
     valid.extend(vec![0x42; 2 * (64 + 16 + 4 + 1)]);
@@ -626,92 +668,82 @@ fn files(dir: &std::path::Path, rng: &mut Rng) -> Vec<std::ffi::CString> {
     list
 }
 
-#[test]
-fn every_entry_point_survives_hostile_calls() {
-    let secs = env_u64("VOODOO_FUZZ_SECS");
-    let calls = env_u64("VOODOO_FUZZ_CALLS").unwrap_or(DEFAULT_CALLS);
-    let first_seed = env_u64("VOODOO_FUZZ_SEED").unwrap_or(1);
-    let deadline = secs.map(|s| Instant::now() + Duration::from_secs(s));
-    let dir = std::env::temp_dir().join(format!("glide3-c-fuzz-{}", std::process::id()));
-    let mut setup = Rng(first_seed);
+/// Scratch files of the `.3df` calls, written once per process.
+fn scratch_files() -> &'static [std::ffi::CString] {
+    static FILES: std::sync::OnceLock<Vec<std::ffi::CString>> = std::sync::OnceLock::new();
+    FILES.get_or_init(|| {
+        let dir = std::env::temp_dir().join(format!("voodoo-fuzz-glide-{}", std::process::id()));
+        files(&dir, &mut Gen(Rng::new(7)))
+    })
+}
+
+/// FNV-1a of the input: the program's seed.
+fn seed_of(input: &[u8]) -> u64 {
+    input.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+    })
+}
+
+/// Seeds: a few programs.
+pub fn seeds(_repo: &crate::corpus::Repository) -> Vec<Vec<u8>> {
+    (0u64..8).map(|i| i.to_le_bytes().to_vec()).collect()
+}
+
+/// Runs the program the input seeds; panics on an internal error.
+pub fn run(input: &[u8]) {
+    let mut setup = Gen(Rng::new(seed_of(input) ^ 0x5a5a));
     let mut fuzz = Fuzz {
-        rng: Rng(first_seed),
+        rng: Gen(Rng::new(seed_of(input))),
         mem: Arena {
             vertices: vec![0.0; 64 * VERTEX_WORDS],
             texels: (0..2 * 256 * 256 * 2).map(|_| setup.byte()).collect(),
             table: vec![0; 256],
             state: vec![0; 588],
             layout: vec![0; 100],
-            files: files(&dir, &mut setup),
+            files: scratch_files().to_vec(),
         },
     };
     grErrorSetCallback(Some(on_error));
-    let mut made = 0u64;
-    let (mut triangles, mut pixels) = (0i64, 0i64);
-    let mut seed = first_seed;
-    loop {
-        let done = match deadline {
-            Some(d) => Instant::now() >= d,
-            None => made >= calls,
-        };
-        if done {
-            break;
-        }
-        // A round: a fresh session and its own seed, so a failure replays from it.
-        fuzz.rng = Rng(seed);
-        fuzz.scramble_vertices();
-        grGlideInit();
-        grSstWinOpen(
-            0,
-            GR_RESOLUTION_640x480 as i32,
-            GR_REFRESH_60Hz as i32,
-            0,
-            0,
-            2,
-            1,
-        );
-        // A layout that reads every parameter, so that drawing calls draw.
-        for (param, offset) in [
-            (GR_PARAM_XY, 0),
-            (GR_PARAM_Z, 8),
-            (GR_PARAM_Q, 12),
-            (GR_PARAM_A, 16),
-            (GR_PARAM_RGB, 20),
-            (GR_PARAM_ST0, 32),
-            (GR_PARAM_Q0, 40),
-            (GR_PARAM_ST1, 44),
-        ] {
-            grVertexLayout(param, offset, GR_PARAM_ENABLE);
-        }
-        let mut recent = std::collections::VecDeque::new();
-        for _ in 0..CALLS_PER_ROUND {
-            let what = fuzz.call();
-            recent.push_back(what);
-            if recent.len() > 16 {
-                recent.pop_front();
-            }
-            let internal = std::mem::take(&mut *INTERNAL.lock().unwrap());
-            assert!(
-                internal.is_empty(),
-                "seed {seed}: {internal:?}\nlast calls:\n{}",
-                Vec::from(recent).join("\n")
-            );
-        }
-        let mut n = [0i32; 2];
-        // SAFETY: 4-byte answers.
-        unsafe {
-            grGet(GR_STATS_TRIANGLES_IN, 4, &mut n[0]);
-            grGet(GR_STATS_PIXELS_IN, 4, &mut n[1]);
-        }
-        triangles += n[0] as i64;
-        pixels += n[1] as i64;
-        grGlideShutdown();
-        made += CALLS_PER_ROUND;
-        seed += 1;
-    }
-    let _ = std::fs::remove_dir_all(&dir);
-    eprintln!(
-        "{made} calls from seeds {first_seed}..{seed} without an internal error \
-         ({triangles} triangles and {pixels} pixels in the last session of each round)"
+    INTERNAL
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+        .clear();
+    fuzz.scramble_vertices();
+    grGlideInit();
+    grSstWinOpen(
+        0,
+        GR_RESOLUTION_640x480 as i32,
+        GR_REFRESH_60Hz as i32,
+        0,
+        0,
+        2,
+        1,
     );
+    // A layout that reads every parameter, so that drawing calls draw.
+    for (param, offset) in [
+        (GR_PARAM_XY, 0),
+        (GR_PARAM_Z, 8),
+        (GR_PARAM_Q, 12),
+        (GR_PARAM_A, 16),
+        (GR_PARAM_RGB, 20),
+        (GR_PARAM_ST0, 32),
+        (GR_PARAM_Q0, 40),
+        (GR_PARAM_ST1, 44),
+    ] {
+        grVertexLayout(param, offset, GR_PARAM_ENABLE);
+    }
+    let mut calls = Vec::with_capacity(CALLS_PER_CASE);
+    for _ in 0..CALLS_PER_CASE {
+        calls.push(fuzz.call());
+        let internal = std::mem::take(
+            &mut *INTERNAL
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner),
+        );
+        if !internal.is_empty() {
+            grGlideShutdown();
+            panic!("{internal:?} after the calls:\n{}", calls.join("\n"));
+        }
+    }
+    grGlideShutdown();
 }
