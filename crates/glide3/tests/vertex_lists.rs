@@ -5,19 +5,10 @@
 mod common;
 use common::{Op, Rec};
 use glide::consts::*;
-use glide::{BoardInfo, Glide};
+use glide::Glide;
 
 fn open() -> (Glide, Rec) {
-    let rec = Rec::default();
-    let mut g = Glide::init(Box::new(rec.clone()), BoardInfo::new(4, 1, 4));
-    assert!(g.win_open(
-        GR_RESOLUTION_640x480,
-        GR_REFRESH_60Hz,
-        GR_COLORFORMAT_ARGB,
-        GR_ORIGIN_UPPER_LEFT,
-        2,
-        1
-    ));
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
     g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
     g.vertex_layout(GR_PARAM_RGB, 8, GR_PARAM_ENABLE);
     g.color_combine(
@@ -30,6 +21,16 @@ fn open() -> (Glide, Rec) {
     rec.0.borrow_mut().clear();
     (g, rec)
 }
+
+/// The triangles of a strip of eight vertices (every other one turned).
+const STRIP: [[usize; 3]; 6] = [
+    [0, 1, 2],
+    [2, 1, 3],
+    [2, 3, 4],
+    [4, 3, 5],
+    [4, 5, 6],
+    [6, 5, 7],
+];
 
 /// Eight vertices on a rough circle, each with its own colour.
 fn vertices() -> Vec<[f32; 5]> {
@@ -93,7 +94,7 @@ fn strips_fans_and_polygons_are_their_triangles() {
         let (a, b) = v.split_at(split);
         assert_eq!(
             list(Some((GR_TRIANGLE_STRIP, a)), GR_TRIANGLE_STRIP_CONTINUE, b),
-            triangles(&v, &strip),
+            triangles(&v, &STRIP),
             "strip split at {split}"
         );
         assert_eq!(

@@ -147,6 +147,16 @@ impl Fuzz {
         }
     }
 
+    /// A TMU (0-3, of 1 on the board), a start address (up to 5 MiB, past the 4 MiB of
+    /// texture memory) and an even/odd mask (0-4).
+    fn texture_target(&mut self) -> (i32, u32, u32) {
+        (
+            self.rng.i() % 4,
+            self.rng.int() % (5 << 20),
+            self.rng.int() % 5,
+        )
+    }
+
     fn tex_info(&mut self) -> GrTexInfo {
         GrTexInfo {
             small_lod_log2: self.rng.below(12) as i32 - 2,
@@ -433,11 +443,7 @@ impl Fuzz {
             }
             13 => {
                 let mut info = self.tex_info();
-                let (tmu, start, eo) = (
-                    self.rng.i() % 4,
-                    self.rng.int() % (5 << 20),
-                    self.rng.int() % 5,
-                );
+                let (tmu, start, eo) = self.texture_target();
                 // SAFETY: GrTexInfo with texel data covering any mipmap.
                 unsafe {
                     match self.rng.below(4) {
@@ -454,11 +460,7 @@ impl Fuzz {
             }
             14 => {
                 let info = self.tex_info();
-                let (tmu, start, eo) = (
-                    self.rng.i() % 4,
-                    self.rng.int() % (5 << 20),
-                    self.rng.int() % 5,
-                );
+                let (tmu, start, eo) = self.texture_target();
                 let (t, max_t) = (self.rng.i() % 300, self.rng.i() % 300);
                 let data = info.data as *const c_void;
                 // SAFETY: the texel arena covers a whole 256x256 16-bit level.
@@ -480,11 +482,7 @@ impl Fuzz {
             }
             15 => {
                 let info = self.tex_info();
-                let (tmu, start, eo) = (
-                    self.rng.i() % 4,
-                    self.rng.int() % (5 << 20),
-                    self.rng.int() % 5,
-                );
+                let (tmu, start, eo) = self.texture_target();
                 // SAFETY: the texel arena covers a whole 256x256 16-bit level.
                 unsafe {
                     grTexDownloadMipMapLevel(
