@@ -58,6 +58,11 @@ impl Reference {
         }
     }
 
+    /// The reference whose golden folder (and `--model` name) is `name`.
+    pub fn from_name(name: &str) -> Option<Reference> {
+        Reference::ALL.into_iter().find(|r| r.golden_dir() == name)
+    }
+
     /// Every switch set to what this emulator does (each switch's documentation names
     /// who does what). One line per switch, in the order MAME, DOSBox Staging, 86Box; the
     /// literals name every field, so a new switch cannot be left out.

@@ -20,6 +20,8 @@
 //!   swap (`window` module; needs the cargo feature `window` and a display, else one
 //!   line on stderr and the run stays headless).
 //! * `VOODOO_FBI_MB`, `VOODOO_TMUS`, `VOODOO_TMU_MB`: the board (default 4, 1, 4).
+//! * `VOODOO_MODEL`: the model of the board, `hardware` (the default) or a reference
+//!   emulator's, `mame`, `dosbox-staging` or `86box` (`voodoo replay --model`).
 //!
 //! Headless by default: without `VOODOO_WINDOW` there is no window; the board is the only
 //! output.
@@ -30,7 +32,7 @@
 
 use glide::consts::*;
 use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
-use sst1_board::{Board, BoardConfig, BufferKind};
+use sst1_board::{AccuracyProfile, Board, BoardConfig, BufferKind, Reference};
 use sst1_regs::RegisterBus;
 use sst1_trace::{encode_binary, write_text, DumpBuffer, Recorder};
 use std::borrow::Cow;
@@ -351,6 +353,26 @@ fn board_config() -> BoardConfig {
     .sanitized()
 }
 
+/// The model of the board `VOODOO_MODEL` names: `hardware` (the default: our reading of
+/// the SST-1), or one reference emulator's model, `mame`, `dosbox-staging` or `86box`.
+/// Any other value is said once on stderr and the hardware model runs.
+fn model_profile() -> AccuracyProfile {
+    let Ok(name) = std::env::var("VOODOO_MODEL") else {
+        return AccuracyProfile::default();
+    };
+    match Reference::from_name(&name) {
+        Some(r) => r.profile(),
+        None if name == "hardware" => AccuracyProfile::default(),
+        None => {
+            eprintln!(
+                "glide3: VOODOO_MODEL={name:.40} is not hardware, mame, dosbox-staging or 86box; \
+                 running the hardware model"
+            );
+            AccuracyProfile::default()
+        }
+    }
+}
+
 fn png_setting() -> Option<(String, Option<Vec<u32>>)> {
     let path = std::env::var("VOODOO_PNG").ok()?;
     let swaps = std::env::var("VOODOO_PNG_SWAPS")
@@ -449,7 +471,9 @@ pub extern "C" fn grGlideInit() {
                 return;
             }
             let cfg = board_config();
-            let board = SharedBoard(Rc::new(RefCell::new(Board::new(cfg))));
+            let mut board = Board::new(cfg);
+            board.set_profile(model_profile());
+            let board = SharedBoard(Rc::new(RefCell::new(board)));
             let recording = Recording::from_env(&board, cfg);
             let bus = match &recording {
                 Some(r) => Bus::Recorded(r.recorder.clone()),

@@ -11,7 +11,7 @@
 //! intended change, `VOODOO_BLESS=1 cargo test -p glide3-c --test c_examples` rewrites
 //! the committed trace and goldens of the C examples.
 
-use sst1_board::Board;
+use sst1_board::{Board, Reference};
 use sst1_trace::{execute, load_trace, rgb565_to_rgb8, Dump, Trace};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
@@ -84,12 +84,23 @@ fn compile(name: &str, out: &Path, flags: &[&str]) -> Option<PathBuf> {
 }
 
 fn build_and_run(name: &str) -> Run {
-    let out = std::env::temp_dir().join(format!("glide3-c-test-{}-{name}", std::process::id()));
+    build_and_run_with(name, None)
+}
+
+/// [`build_and_run`] with `VOODOO_MODEL` set to `model`.
+fn build_and_run_with(name: &str, model: Option<&str>) -> Run {
+    let tag = model.map(|m| format!("-{m}")).unwrap_or_default();
+    let out =
+        std::env::temp_dir().join(format!("glide3-c-test-{}-{name}{tag}", std::process::id()));
     std::fs::create_dir_all(&out).expect("temp dir");
     let exe = build(name, &out);
     let png = out.join(format!("{name}.png"));
     let trace = out.join(format!("{name}.trace.gz"));
-    let run = Command::new(&exe)
+    let mut command = Command::new(&exe);
+    if let Some(model) = model {
+        command.env("VOODOO_MODEL", model);
+    }
+    let run = command
         .env("LD_LIBRARY_PATH", lib_dir())
         .env("VOODOO_PNG", &png)
         .env("VOODOO_TRACE", &trace)
@@ -296,4 +307,50 @@ fn a_hostile_program_is_harmless() {
     assert!(!stderr.contains("AddressSanitizer"), "{stderr}");
     assert_eq!(String::from_utf8_lossy(&run.stdout), "ok\n", "{stderr}");
     assert!(run.status.success(), "{stderr}");
+}
+
+/// `VOODOO_MODEL` chooses the model the library runs: each reference emulator's model
+/// draws what replaying the recorded trace on that model draws, at least one of them
+/// differs from the hardware model on this scene, and an unknown name runs the hardware
+/// model with one line on stderr.
+#[test]
+fn voodoo_model_chooses_the_board_model() {
+    let front = |run: &Run| {
+        image::open(&run.png)
+            .expect("decode PNG")
+            .to_rgb8()
+            .into_raw()
+    };
+    let hardware = build_and_run_with("decal_blend", Some("hardware"));
+    let mut differs = false;
+    for r in Reference::ALL {
+        let run = build_and_run_with("decal_blend", Some(r.golden_dir()));
+        assert!(run.stderr.is_empty(), "{}", run.stderr);
+        let trace = load_trace(&run.trace).expect("recorded trace loads");
+        let mut board = Board::new(trace.board_config());
+        board.set_profile(r.profile());
+        let last = execute(&trace.ops, &mut board, |_| {})
+            .pop()
+            .expect("a dump");
+        let replayed: Vec<u8> = last.data.iter().flat_map(|&p| rgb565_to_rgb8(p)).collect();
+        assert!(
+            replayed == front(&run),
+            "{}: PNG differs from its replay",
+            r.golden_dir()
+        );
+        differs |= front(&run) != front(&hardware);
+    }
+    assert!(
+        differs,
+        "every reference model drew what the hardware model drew"
+    );
+    let bogus = build_and_run_with("decal_blend", Some("vote"));
+    assert!(
+        bogus
+            .stderr
+            .starts_with("glide3: VOODOO_MODEL=vote is not hardware"),
+        "{}",
+        bogus.stderr
+    );
+    assert!(front(&bogus) == front(&hardware));
 }

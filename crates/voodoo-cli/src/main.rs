@@ -55,30 +55,31 @@ enum Command {
         /// Write the front (displayed) buffer at the end as a PNG.
         #[arg(long)]
         png: Option<PathBuf>,
-        /// How the board is modelled: `vote` replays the trace once per reference
-        /// emulator (MAME, DOSBox Staging, 86Box profiles) and keeps, per pixel, the value
-        /// two of them write (the conformance pass rule; three times the work, on three
-        /// threads); `single` replays it once with one accuracy profile. Default: `vote`,
-        /// or `single` with `--profile`.
+        /// The model of the board: `hardware` (the default) is our reading of the SST-1;
+        /// `mame`, `dosbox-staging` and `86box` are one board each with that reference
+        /// emulator's behaviour; `vote` replays the trace once per reference emulator and
+        /// keeps, per pixel, the value two of them write (the conformance pass rule; three
+        /// times the work, on three threads).
         #[arg(long, value_enum)]
         model: Option<Model>,
         /// Print the pixel and command counters at the end (with `--model vote`: those
-        /// of the MAME-profile board).
+        /// of the MAME-model board).
         #[arg(long)]
         stats: bool,
         /// Write the counters as JSON to this file.
         #[arg(long, value_name = "FILE")]
         stats_json: Option<PathBuf>,
-        /// Accuracy profile as JSON (at most 1 MiB) for `--model single`: every disputed
-        /// behaviour, or only those to change, e.g.
+        /// Accuracy profile as JSON (at most 1 MiB) for experiments on a one-board model:
+        /// the switches to change from that model's, e.g.
         /// `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see docs/accuracy.md).
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
     },
-    /// Replay a trace and judge each of its dumps against reference emulators' goldens
-    /// with the conformance pass rule: every pixel where all goldens agree must match,
-    /// and every pixel where two of three agree. Exits with status 1 if a pixel fails, if
-    /// the goldens folder is missing, or if a dump has fewer than two goldens.
+    /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
+    /// against reference emulators' goldens with the conformance pass rule: every pixel
+    /// where all goldens agree must match (consensus), and every pixel where two of three
+    /// agree (majority). Prints both counts per dump; exits with status 1 if a pixel
+    /// fails, if the goldens folder is missing, or if a dump has fewer than two goldens.
     Check {
         /// Trace file: text or binary, optionally gzip-compressed.
         trace: PathBuf,
@@ -122,13 +123,38 @@ enum Command {
     },
 }
 
-/// How `voodoo replay` models the board.
+/// The model of the board a replay runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Model {
-    /// One board per reference emulator's profile, voted pixel by pixel.
+    /// The hardware model: one board, our reading of the SST-1 (the default accuracy
+    /// profile, docs/accuracy.md).
+    Hardware,
+    /// One board per reference emulator, voted pixel by pixel.
     Vote,
-    /// One board with one accuracy profile.
+    /// One board that behaves as MAME does.
+    Mame,
+    /// One board that behaves as DOSBox Staging does.
+    #[value(name = "dosbox-staging")]
+    DosboxStaging,
+    /// One board that behaves as 86Box does.
+    #[value(name = "86box")]
+    Box86,
+    /// The former name of `hardware`.
+    #[value(hide = true)]
     Single,
+}
+
+impl Model {
+    /// The accuracy profile of a one-board model; `None` for the vote.
+    fn profile(self) -> Option<AccuracyProfile> {
+        match self {
+            Model::Hardware | Model::Single => Some(AccuracyProfile::default()),
+            Model::Vote => None,
+            Model::Mame => Some(Reference::Mame.profile()),
+            Model::DosboxStaging => Some(Reference::DosboxStaging.profile()),
+            Model::Box86 => Some(Reference::Box86.profile()),
+        }
+    }
 }
 
 /// Let a closed output pipe (`voodoo info t.trace | head`) end the process quietly, as
@@ -184,33 +210,56 @@ fn main() -> ExitCode {
     }
 }
 
-/// The single board's profile, or `None` for the reference vote.
+/// The one board's profile (the model's, changed by `--profile`), or `None` for the
+/// reference vote.
 fn resolve_model(
     model: Option<Model>,
     profile: Option<&Path>,
 ) -> Result<Option<AccuracyProfile>, String> {
-    match (model, profile) {
-        (Some(Model::Vote), Some(_)) => {
-            Err("--profile sets up one board: use it with --model single".to_string())
-        }
-        (Some(Model::Vote), None) | (None, None) => Ok(None),
-        (Some(Model::Single), _) | (None, Some(_)) => load_profile(profile).map(Some),
+    let model = model.unwrap_or(Model::Hardware);
+    match (model.profile(), profile) {
+        (None, Some(_)) => Err(
+            "--profile sets up one board: use it with a one-board model \
+             (--model hardware, mame, dosbox-staging or 86box)"
+                .to_string(),
+        ),
+        (None, None) => Ok(None),
+        (Some(base), None) => Ok(Some(base)),
+        (Some(base), Some(path)) => load_profile(base, path).map(Some),
     }
 }
 
 /// The largest accuracy profile read (a full profile is a few KiB of JSON).
 const MAX_PROFILE: u64 = 1 << 20;
 
-/// Reads an accuracy profile from a JSON file of at most [`MAX_PROFILE`] bytes; members
-/// left out keep their defaults.
-fn load_profile(path: Option<&Path>) -> Result<AccuracyProfile, String> {
-    let Some(path) = path else {
-        return Ok(AccuracyProfile::default());
-    };
+/// `base` changed by the accuracy profile in a JSON file of at most [`MAX_PROFILE`]
+/// bytes: members left out keep `base`'s value.
+fn load_profile(base: AccuracyProfile, path: &Path) -> Result<AccuracyProfile, String> {
     let bytes = read_file_bounded(path, MAX_PROFILE).map_err(|e| e.to_string())?;
     let text =
         std::str::from_utf8(&bytes).map_err(|_| format!("{}: not UTF-8 text", path.display()))?;
-    serde_json::from_str(text).map_err(|e| format!("{}: {e}", path.display()))
+    let changes: serde_json::Value =
+        serde_json::from_str(text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut merged = serde_json::to_value(base).map_err(|e| e.to_string())?;
+    merge_json(&mut merged, changes);
+    serde_json::from_value(merged).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Writes `changes` over `base`: objects member by member, anything else whole.
+fn merge_json(base: &mut serde_json::Value, changes: serde_json::Value) {
+    match (base, changes) {
+        (serde_json::Value::Object(base), serde_json::Value::Object(changes)) => {
+            for (key, value) in changes {
+                match base.get_mut(&key) {
+                    Some(slot) => merge_json(slot, value),
+                    None => {
+                        base.insert(key, value);
+                    }
+                }
+            }
+        }
+        (slot, value) => *slot = value,
+    }
 }
 
 /// What a replay leaves: a board to report on and the front buffer.

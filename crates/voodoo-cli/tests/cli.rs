@@ -197,7 +197,13 @@ fn replay_takes_a_partial_profile() {
         let i = 2 * 640;
         u16::from_le_bytes([raw[i], raw[i + 1]]) >> 11
     };
-    // One board with the default profile (classic 2x2 matrix), and with MAME's matrix.
+    // The hardware model (the default; the classic 2x2 matrix), and with MAME's matrix
+    // set by a profile.
+    assert_eq!(red_at_0_1(&["replay", "fill.trace"]), 17);
+    assert_eq!(
+        red_at_0_1(&["replay", "fill.trace", "--model", "hardware"]),
+        17
+    );
     assert_eq!(
         red_at_0_1(&["replay", "fill.trace", "--model", "single"]),
         17
@@ -206,9 +212,33 @@ fn replay_takes_a_partial_profile() {
         red_at_0_1(&["replay", "fill.trace", "--profile", "mame.json"]),
         16
     );
-    // The reference vote (the default): MAME's matrix gives 16, DOSBox Staging's 17, and
-    // 86Box's undithered fill 0x85 >> 3 = 16, so two of three write 16.
-    assert_eq!(red_at_0_1(&["replay", "fill.trace"]), 16);
+    // Each reference emulator's model: MAME's matrix gives 16, DOSBox Staging's 17, and
+    // 86Box's undithered fill 0x85 >> 3 = 16; so the vote of the three writes 16.
+    for (model, red) in [
+        ("mame", 16),
+        ("dosbox-staging", 17),
+        ("86box", 16),
+        ("vote", 16),
+    ] {
+        assert_eq!(
+            red_at_0_1(&["replay", "fill.trace", "--model", model]),
+            red,
+            "{model}"
+        );
+    }
+    // A profile changes the chosen model's switches only: DOSBox Staging's model with
+    // MAME's 2x2 matrix.
+    assert_eq!(
+        red_at_0_1(&[
+            "replay",
+            "fill.trace",
+            "--model",
+            "dosbox-staging",
+            "--profile",
+            "mame.json"
+        ]),
+        16
+    );
     let out = voodoo(
         &dir,
         &[
@@ -221,7 +251,7 @@ fn replay_takes_a_partial_profile() {
         ],
     );
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--model single"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("one-board model"));
     std::fs::write(dir.join("bad.json"), r#"{"pixel": {"dither_2x2": "Nope"}}"#).unwrap();
     let out = voodoo(&dir, &["replay", "fill.trace", "--profile", "bad.json"]);
     assert!(!out.status.success());

@@ -137,7 +137,8 @@ fn replay_of_ten_million_reads_and_4000_dumps_runs_in_bounded_memory() {
 
     let run = voodoo_limited(
         &dir,
-        &["replay", "big.trace.gz", "--out", "out"],
+        // The vote: four boards' buffers, the most a replay holds.
+        &["replay", "big.trace.gz", "--model", "vote", "--out", "out"],
         Some(512 << 20),
     );
     assert_eq!(run.code, Some(0), "{}", run.stderr);
