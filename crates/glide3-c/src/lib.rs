@@ -10,8 +10,9 @@
 //!   `VOODOO_PNG_SWAPS=1,3` picks the swaps (1-based); without it every swap
 //!   overwrites the file. With more than one swap listed, `_swapN` is inserted
 //!   before the extension.
-//! * `VOODOO_TRACE=path`: record the whole run with `sst1_trace::Recorder` and write it
-//!   at `grGlideShutdown`: text format (shared/docs/trace-text-format.md), or the binary
+//! * `VOODOO_TRACE=path`: record the whole run with `sst1_trace::Recorder`, streamed
+//!   into the file (`sst1_trace::TraceWriter`) and completed at `grGlideShutdown`: text
+//!   format (shared/docs/trace-text-format.md), or the binary
 //!   form when the name ends in `.vtrace`; gzip-compressed when it ends in `.gz`. After
 //!   every buffer swap the trace gets a `dump front STEM_swapN_front.raw` point (STEM:
 //!   the file name up to its first dot), so `voodoo replay` reproduces each displayed
@@ -34,12 +35,12 @@ use glide::consts::*;
 use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
 use sst1_board::{AccuracyProfile, Board, BoardConfig, BufferKind, Reference};
 use sst1_regs::RegisterBus;
-use sst1_trace::{encode_binary, write_text, DumpBuffer, Recorder};
+use sst1_trace::{DumpBuffer, Recorder, TraceWriter};
 use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
-use std::io::{Read, Write};
+use std::io::Read;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::rc::Rc;
@@ -69,9 +70,9 @@ impl RegisterBus for SharedBoard {
     }
 }
 
-/// The `sst1_trace` recorder wrapping the board, shared so the C layer can add dump
-/// points and take the trace at shutdown.
-type SharedRecorder = Rc<RefCell<Recorder<SharedBoard>>>;
+/// The `sst1_trace` recorder wrapping the board, streaming into the trace file; shared so
+/// the C layer can add dump points and finish the file at shutdown.
+type SharedRecorder = Rc<RefCell<Recorder<SharedBoard, TraceWriter>>>;
 
 /// The bus Glide writes: the board, or the recorder in front of it (`VOODOO_TRACE`).
 enum Bus {
@@ -108,7 +109,9 @@ struct Recording {
 }
 
 impl Recording {
-    /// Starts recording when `VOODOO_TRACE` names a file.
+    /// Starts recording when `VOODOO_TRACE` names a file: the file is created now and the
+    /// run streams into it (memory does not grow with the run). A file that cannot be
+    /// created is said once on stderr and the run goes on unrecorded.
     fn from_env(board: &SharedBoard, cfg: BoardConfig) -> Option<Self> {
         let path = PathBuf::from(std::env::var_os("VOODOO_TRACE")?);
         let name = path.file_name()?.to_string_lossy().into_owned();
@@ -125,8 +128,22 @@ impl Recording {
                 }
             })
             .collect();
+        let writer = match TraceWriter::create(&path) {
+            Ok(writer) => writer,
+            Err(e) => {
+                eprintln!(
+                    "glide3: cannot write {}: {e}; not recording",
+                    path.display()
+                );
+                return None;
+            }
+        };
         Some(Self {
-            recorder: Rc::new(RefCell::new(Recorder::new(board.clone(), cfg))),
+            recorder: Rc::new(RefCell::new(Recorder::streaming(
+                board.clone(),
+                cfg,
+                writer,
+            ))),
             path,
             stem: if stem.is_empty() {
                 "trace".into()
@@ -141,26 +158,10 @@ impl Recording {
         format!("{stem}_swap{n}_front.raw")
     }
 
-    /// Writes the trace: binary for `.vtrace`, text otherwise, gzip when the name ends
+    /// Completes the trace file: text, or binary for `.vtrace`, gzip when the name ends
     /// in `.gz` (the convention of `voodoo convert`).
-    fn write(&self) -> std::io::Result<()> {
-        let trace = self.recorder.borrow().trace().clone();
-        let name = self.path.to_string_lossy();
-        let (base, gzip) = match name.strip_suffix(".gz") {
-            Some(base) => (base, true),
-            None => (&*name, false),
-        };
-        let mut bytes = if base.ends_with(".vtrace") {
-            encode_binary(&trace)
-        } else {
-            write_text(&trace).into_bytes()
-        };
-        if gzip {
-            let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
-            enc.write_all(&bytes)?;
-            bytes = enc.finish()?;
-        }
-        std::fs::write(&self.path, bytes)
+    fn finish(&self) -> std::io::Result<()> {
+        self.recorder.borrow_mut().log_mut().finish()
     }
 }
 
@@ -506,7 +507,7 @@ pub extern "C" fn grGlideShutdown() {
         };
         drop(ctx.glide.shutdown());
         if let Some(r) = &ctx.recording {
-            if let Err(e) = r.write() {
+            if let Err(e) = r.finish() {
                 eprintln!("glide3: cannot write {}: {e}", r.path.display());
             }
         }

@@ -137,65 +137,84 @@ fn buffer_code(buffer: DumpBuffer) -> u8 {
 /// [`parse_text`](crate::parse_text) or [`decode_binary`] does); the board configuration in
 /// the header is narrowed to a byte per field.
 pub fn encode_binary(trace: &Trace) -> Vec<u8> {
-    let config = trace.board_config();
     let counts = OpCounts::of(trace);
     let mut out = Vec::with_capacity(HEADER_LEN as usize + trace.ops.len() * 9);
+    encode_header(
+        &mut out,
+        trace.board_config(),
+        trace.ops.len() as u64,
+        counts.swaps,
+    );
+    let mut frame = 0u32;
+    for op in &trace.ops {
+        encode_op(&mut out, op, &mut frame);
+    }
+    out
+}
+
+/// Appends the header of a trace on `board` with `op_count` ops and `frame_count` frames.
+pub(crate) fn encode_header(
+    out: &mut Vec<u8>,
+    board: sst1_board::BoardConfig,
+    op_count: u64,
+    frame_count: u64,
+) {
     out.extend_from_slice(&MAGIC);
     out.extend_from_slice(&VERSION.to_le_bytes());
     out.extend_from_slice(&READER_VERSION.to_le_bytes());
     out.extend_from_slice(&HEADER_LEN.to_le_bytes());
-    for field in [config.fbi_mb, config.tmus, config.tmu_mb] {
+    for field in [board.fbi_mb, board.tmus, board.tmu_mb] {
         out.push(field.min(255) as u8);
     }
     out.push(0);
-    out.extend_from_slice(&(trace.ops.len() as u64).to_le_bytes());
-    out.extend_from_slice(&counts.swaps.to_le_bytes());
+    out.extend_from_slice(&op_count.to_le_bytes());
+    out.extend_from_slice(&frame_count.to_le_bytes());
+}
 
-    let mut frame = 0u32;
-    for op in &trace.ops {
-        match op {
-            TraceOp::Config { key, value } => {
-                out.push(TAG_CONFIG);
-                out.push(config_code(*key));
-                out.extend_from_slice(&value.to_le_bytes());
-            }
-            TraceOp::Pci { offset, value } => {
-                out.push(TAG_PCI);
-                out.extend_from_slice(&offset.to_le_bytes());
-                out.extend_from_slice(&value.to_le_bytes());
-            }
-            TraceOp::Write { addr, value } => {
-                out.push(TAG_WRITE);
-                out.extend_from_slice(&addr.to_le_bytes());
-                out.extend_from_slice(&value.to_le_bytes());
-                if crate::replay::is_swap(*addr) {
-                    out.push(TAG_FRAME);
-                    out.extend_from_slice(&frame.to_le_bytes());
-                    frame = frame.wrapping_add(1);
-                }
-            }
-            TraceOp::Read { addr, value: None } => {
-                out.push(TAG_READ);
-                out.extend_from_slice(&addr.to_le_bytes());
-            }
-            TraceOp::Read {
-                addr,
-                value: Some(value),
-            } => {
-                out.push(TAG_READ_VALUE);
-                out.extend_from_slice(&addr.to_le_bytes());
-                out.extend_from_slice(&value.to_le_bytes());
-            }
-            TraceOp::Dump { buffer, file } => {
-                out.push(TAG_DUMP);
-                out.push(buffer_code(*buffer));
-                let name = &file.as_bytes()[..file.len().min(255)];
-                out.push(name.len() as u8);
-                out.extend_from_slice(name);
+/// Appends the record of `op` (and, after a swap, the frame record numbered `frame`,
+/// which then counts on).
+pub(crate) fn encode_op(out: &mut Vec<u8>, op: &TraceOp, frame: &mut u32) {
+    match op {
+        TraceOp::Config { key, value } => {
+            out.push(TAG_CONFIG);
+            out.push(config_code(*key));
+            out.extend_from_slice(&value.to_le_bytes());
+        }
+        TraceOp::Pci { offset, value } => {
+            out.push(TAG_PCI);
+            out.extend_from_slice(&offset.to_le_bytes());
+            out.extend_from_slice(&value.to_le_bytes());
+        }
+        TraceOp::Write { addr, value } => {
+            out.push(TAG_WRITE);
+            out.extend_from_slice(&addr.to_le_bytes());
+            out.extend_from_slice(&value.to_le_bytes());
+            if crate::replay::is_swap(*addr) {
+                out.push(TAG_FRAME);
+                out.extend_from_slice(&frame.to_le_bytes());
+                *frame = frame.wrapping_add(1);
             }
         }
+        TraceOp::Read { addr, value: None } => {
+            out.push(TAG_READ);
+            out.extend_from_slice(&addr.to_le_bytes());
+        }
+        TraceOp::Read {
+            addr,
+            value: Some(value),
+        } => {
+            out.push(TAG_READ_VALUE);
+            out.extend_from_slice(&addr.to_le_bytes());
+            out.extend_from_slice(&value.to_le_bytes());
+        }
+        TraceOp::Dump { buffer, file } => {
+            out.push(TAG_DUMP);
+            out.push(buffer_code(*buffer));
+            let name = &file.as_bytes()[..file.len().min(255)];
+            out.push(name.len() as u8);
+            out.extend_from_slice(name);
+        }
     }
-    out
 }
 
 /// The header fields a reader checks the records against.

@@ -31,6 +31,7 @@ mod read;
 mod recorder;
 mod replay;
 pub mod text;
+mod writer;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -40,13 +41,14 @@ use sst1_board::{BoardConfig, BufferKind};
 pub use binary::{decode_binary, encode_binary, BinaryError, BinaryReader};
 pub use output::{write_file_replacing, DumpDir, OutputError};
 pub use read::{open_trace, stream_trace, TraceReader, TraceStream, MAX_PREFIX_OPS};
-pub use recorder::{recorded_addr, recorded_pci_offset, Recorder, PCI_UNDECODED};
+pub use recorder::{recorded_addr, recorded_pci_offset, OpLog, Recorder, PCI_UNDECODED};
 pub use replay::{
     execute, execute_references, execute_references_stream, execute_stream, replay, rgb565_to_rgb8,
     vote_buffer, write_dumps, Dump, OpCounts, ReferenceDump, ReferenceReplay, ReplayError,
     PROGRESS_STEP,
 };
 pub use text::{parse_text, write_text, ParseError, TextReader};
+pub use writer::TraceWriter;
 
 /// One `config` setting of the board a trace runs on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

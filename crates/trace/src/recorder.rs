@@ -35,22 +35,70 @@ pub fn recorded_pci_offset(offset: u32) -> u32 {
     }
 }
 
+/// Where a [`Recorder`] puts what it logs: a [`Trace`] in memory, or a
+/// [`TraceWriter`](crate::TraceWriter) that streams it to a file.
+pub trait OpLog {
+    /// Records one op.
+    fn record(&mut self, op: TraceOp);
+}
+
+impl OpLog for Trace {
+    fn record(&mut self, op: TraceOp) {
+        self.ops.push(op);
+    }
+}
+
+impl OpLog for crate::TraceWriter {
+    fn record(&mut self, op: TraceOp) {
+        crate::TraceWriter::record(self, &op);
+    }
+}
+
 /// Wraps a [`RegisterBus`], forwards every call unchanged and logs it.
 ///
 /// Reads are logged with the value the wrapped bus returned. Addresses and offsets are
 /// logged as the board decodes them ([`recorded_addr`], [`recorded_pci_offset`]), so the
 /// recorded trace is always valid and replays on a [`Board`](sst1_board::Board) exactly
-/// as the accesses ran on one.
-pub struct Recorder<B: RegisterBus> {
+/// as the accesses ran on one. The log is a [`Trace`] in memory by default; with a
+/// [`TraceWriter`](crate::TraceWriter) ([`Recorder::streaming`]) memory stays constant
+/// however long the recording runs.
+pub struct Recorder<B: RegisterBus, L: OpLog = Trace> {
     inner: B,
-    trace: Trace,
+    log: L,
 }
 
 impl<B: RegisterBus> Recorder<B> {
-    /// Starts a recording of `inner`, a board configured as `config`; the trace opens with
-    /// the three `config` ops that describe it.
+    /// Starts a recording of `inner`, a board configured as `config`, into memory; the
+    /// trace opens with the three `config` ops that describe it.
     pub fn new(inner: B, config: BoardConfig) -> Self {
-        let ops = vec![
+        Recorder::with_log(inner, config, Trace::default())
+    }
+
+    /// The trace recorded so far.
+    pub fn trace(&self) -> &Trace {
+        &self.log
+    }
+
+    /// Ends the recording: the wrapped bus and the trace.
+    pub fn finish(self) -> (B, Trace) {
+        (self.inner, self.log)
+    }
+}
+
+impl<B: RegisterBus> Recorder<B, crate::TraceWriter> {
+    /// Starts a recording of `inner`, a board configured as `config`, streamed into
+    /// `writer`; [`TraceWriter::finish`](crate::TraceWriter::finish) on
+    /// [`Recorder::log_mut`] completes the file.
+    pub fn streaming(inner: B, config: BoardConfig, writer: crate::TraceWriter) -> Self {
+        Recorder::with_log(inner, config, writer)
+    }
+}
+
+impl<B: RegisterBus, L: OpLog> Recorder<B, L> {
+    /// Starts a recording of `inner`, a board configured as `config`, into `log`; the
+    /// log opens with the three `config` ops that describe the board.
+    pub fn with_log(inner: B, config: BoardConfig, mut log: L) -> Self {
+        for op in [
             TraceOp::Config {
                 key: ConfigKey::FbiMb,
                 value: config.fbi_mb,
@@ -63,24 +111,28 @@ impl<B: RegisterBus> Recorder<B> {
                 key: ConfigKey::TmuMb,
                 value: config.tmu_mb,
             },
-        ];
-        Self {
-            inner,
-            trace: Trace { ops },
+        ] {
+            log.record(op);
         }
+        Self { inner, log }
     }
 
     /// Logs a `dump` point: a replay of the trace saves `buffer` to `file` here.
     pub fn dump(&mut self, buffer: DumpBuffer, file: &str) {
-        self.trace.ops.push(TraceOp::Dump {
+        self.log.record(TraceOp::Dump {
             buffer,
             file: file.to_owned(),
         });
     }
 
-    /// The trace recorded so far.
-    pub fn trace(&self) -> &Trace {
-        &self.trace
+    /// The log.
+    pub fn log(&self) -> &L {
+        &self.log
+    }
+
+    /// The log, mutably.
+    pub fn log_mut(&mut self) -> &mut L {
+        &mut self.log
     }
 
     /// The wrapped bus (reading it records nothing).
@@ -93,15 +145,15 @@ impl<B: RegisterBus> Recorder<B> {
         &mut self.inner
     }
 
-    /// Ends the recording: the wrapped bus and the trace.
-    pub fn finish(self) -> (B, Trace) {
-        (self.inner, self.trace)
+    /// Ends the recording: the wrapped bus and the log.
+    pub fn into_parts(self) -> (B, L) {
+        (self.inner, self.log)
     }
 }
 
-impl<B: RegisterBus> RegisterBus for Recorder<B> {
+impl<B: RegisterBus, L: OpLog> RegisterBus for Recorder<B, L> {
     fn write32(&mut self, addr: u32, value: u32) {
-        self.trace.ops.push(TraceOp::Write {
+        self.log.record(TraceOp::Write {
             addr: recorded_addr(addr),
             value,
         });
@@ -110,7 +162,7 @@ impl<B: RegisterBus> RegisterBus for Recorder<B> {
 
     fn read32(&mut self, addr: u32) -> u32 {
         let value = self.inner.read32(addr);
-        self.trace.ops.push(TraceOp::Read {
+        self.log.record(TraceOp::Read {
             addr: recorded_addr(addr),
             value: Some(value),
         });
@@ -118,7 +170,7 @@ impl<B: RegisterBus> RegisterBus for Recorder<B> {
     }
 
     fn pci_write(&mut self, offset: u32, value: u32) {
-        self.trace.ops.push(TraceOp::Pci {
+        self.log.record(TraceOp::Pci {
             offset: recorded_pci_offset(offset),
             value,
         });

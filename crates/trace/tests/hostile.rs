@@ -16,7 +16,7 @@ use sst1_regs::RegisterBus;
 use sst1_trace::{
     decode_binary, encode_binary, execute, execute_references_stream, parse_text, read_trace,
     stream_trace, write_text, BinaryReader, DumpBuffer, LoadError, Recorder, ReferenceDump, Trace,
-    TraceOp, TraceReader,
+    TraceOp, TraceReader, TraceWriter,
 };
 
 // ---------------------------------------------------------------------------------------
@@ -594,4 +594,107 @@ fn streams_equal_whole_reads_for_every_repository_trace() {
         let ops: Vec<TraceOp> = stream.map(Result::unwrap).collect();
         assert_eq!(ops, whole.ops, "{}", path.display());
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// The recorder streams into a file: every form, and memory that does not grow.
+
+#[test]
+fn streaming_recorder_writes_every_form_as_the_memory_recorder_records() {
+    let dir = scratch("writer");
+    std::fs::create_dir_all(&dir).unwrap();
+    let config = BoardConfig {
+        fbi_mb: 2,
+        tmus: 3,
+        tmu_mb: 1,
+    };
+    for name in ["t.trace", "t.trace.gz", "t.vtrace", "t.vtrace.gz"] {
+        let path = dir.join(name);
+        let mut rng = Rng(0x5712_ea11);
+        let mut memory = Recorder::new(Board::new(config), config);
+        let writer = TraceWriter::create(&path).unwrap();
+        let mut streaming = Recorder::streaming(Board::new(config), config, writer);
+        for i in 0..3000 {
+            let region = rng.below(3);
+            let addr = random_addr(&mut rng, region);
+            let value = rng.u32();
+            match i % 7 {
+                0 => {
+                    memory.read32(addr);
+                    streaming.read32(addr);
+                }
+                1 => {
+                    memory.pci_write(addr & 0x1fc, value);
+                    streaming.pci_write(addr & 0x1fc, value);
+                }
+                2 if i % 300 == 2 => {
+                    memory.dump(DumpBuffer::Front, "f.raw");
+                    streaming.dump(DumpBuffer::Front, "f.raw");
+                }
+                _ => {
+                    // Swaps included (register 0x128), so binary frame records are written.
+                    let addr = if i % 50 == 0 { 0x128 } else { addr };
+                    memory.write32(addr, value);
+                    streaming.write32(addr, value);
+                }
+            }
+        }
+        streaming.log_mut().finish().unwrap();
+        let (_, expected) = memory.finish();
+        let read = sst1_trace::load_trace(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(read, expected, "{name}");
+        assert_eq!(read.board_config(), config, "{name}");
+        // The binary-gzip spool is gone.
+        let left: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".spool"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn streaming_recorder_keeps_its_first_error() {
+    let mut writer = TraceWriter::create(Path::new("/dev/full")).unwrap();
+    for _ in 0..10_000 {
+        writer.record(&TraceOp::Write { addr: 0, value: 0 });
+    }
+    let err = writer.finish().unwrap_err();
+    assert_eq!(err.raw_os_error(), Some(libc::ENOSPC), "{err}");
+    // Finished: nothing more is written.
+    assert!(writer
+        .write_op(&TraceOp::Write { addr: 0, value: 0 })
+        .is_err());
+}
+
+/// 8 million writes streamed into a binary trace under a 128 MiB address-space limit
+/// (held in memory, as the recorder once did, they would take 256 MiB of ops).
+#[test]
+fn streaming_recorder_memory_does_not_grow_with_the_recording() {
+    let dir = scratch("long-recording");
+    in_memory_limit(
+        "streaming_recorder_memory_does_not_grow_with_the_recording",
+        128 << 20,
+        || {
+            std::fs::create_dir_all(&dir).unwrap();
+            let path = dir.join("long.vtrace");
+            let config = BoardConfig::default();
+            let writer = TraceWriter::create(&path).unwrap();
+            let mut rec = Recorder::streaming(Board::new(config), config, writer);
+            for i in 0..8_000_000u32 {
+                // color0: a plain register write, no drawing.
+                rec.write32(0x144, i);
+            }
+            rec.log_mut().finish().unwrap();
+            let mut ops = 0u64;
+            for op in sst1_trace::open_trace(&path).unwrap() {
+                op.unwrap();
+                ops += 1;
+            }
+            assert_eq!(ops, 3 + 8_000_000);
+            std::fs::remove_dir_all(&dir).unwrap();
+        },
+    );
 }
