@@ -3,7 +3,7 @@
 //! floats, forged saved-state buffers, bad files) but memory that honours the Glide
 //! contract (every pointer covers what the API says it must). No call may panic (a
 //! panic reaches the error callback as "internal error", which fails the case), crash or
-//! hang. The input's bytes seed the program; each case runs [`CALLS_PER_CASE`] calls in
+//! hang. The input's bytes seed the program; each case runs `CALLS_PER_CASE` (40) calls in
 //! a fresh session.
 
 use crate::rng::Rng;
