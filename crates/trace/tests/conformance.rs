@@ -566,18 +566,19 @@ fn check_hardware_budget(
                           conformance";
     let verdict = match hardware_budget().get(key) {
         None if consensus + majority == 0 => return None,
-        None => "no entry in traces/hardware-budget.toml".to_owned(),
+        None => format!("no entry [\"{key}\"] in traces/hardware-budget.toml"),
         Some(b) if consensus == b.consensus && majority == b.majority => return None,
         Some(b) if consensus <= b.consensus && majority <= b.majority => {
             return Some(format!(
                 "hardware model: {suite}/{name} now misses {consensus} consensus and {majority} \
-                 majority pixels, fewer than its budget ({} and {}): the list only shrinks, \
-                 run `{UPDATE}` to record it\n",
+                 majority pixels, fewer than its budget [\"{key}\"] ({} and {}): the list only \
+                 shrinks, run `{UPDATE}` to record it\n",
                 b.consensus, b.majority
             ));
         }
         Some(b) => format!(
-            "over its budget in traces/hardware-budget.toml ({} consensus, {} majority: {})",
+            "over its budget [\"{key}\"] in traces/hardware-budget.toml ({} consensus, {} \
+             majority: {})",
             b.consensus, b.majority, b.reason
         ),
     };
