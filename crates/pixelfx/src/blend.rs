@@ -66,7 +66,7 @@ use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 /// in `docs/accuracy.md`. Where the references' inputs to the blend differ (diverged
 /// histories, other disputed stages upstream) the vote, taken on our inputs, can miss the
 /// value the references reach from theirs: that is where the 38 consensus pixels are,
-/// listed in `traces/known-failures.toml`.
+/// listed in `traces/hardware-budget.toml`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum BlendArithmetic {
     /// MAME's widening and factors with each product rounded on its own, as DOSBox
