@@ -83,6 +83,17 @@ fn compile(name: &str, out: &Path, flags: &[&str]) -> Option<PathBuf> {
     status.success().then_some(exe)
 }
 
+/// A test program printed exactly "ok" and exited with status 0.
+fn assert_prints_ok(run: &std::process::Output) {
+    assert_eq!(
+        String::from_utf8_lossy(&run.stdout),
+        "ok\n",
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(run.status.success());
+}
+
 fn build_and_run(name: &str) -> Run {
     build_and_run_with(name, None)
 }
@@ -228,13 +239,7 @@ fn api_queries_and_3df_files() {
         .env("LD_LIBRARY_PATH", lib_dir())
         .output()
         .expect("run api");
-    assert_eq!(
-        String::from_utf8_lossy(&run.stdout),
-        "ok\n",
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    assert!(run.status.success());
+    assert_prints_ok(&run);
 }
 
 /// Null vertex pointers, an out-of-range enum and a texture that does not fit reach the
@@ -248,13 +253,7 @@ fn hostile_arguments_reach_the_error_callback() {
         .env("LD_LIBRARY_PATH", lib_dir())
         .output()
         .expect("run hostile");
-    assert_eq!(
-        String::from_utf8_lossy(&run.stdout),
-        "ok\n",
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    assert!(run.status.success());
+    assert_prints_ok(&run);
 }
 
 /// A hostile Glide program (tests/abuse.c: every item of the C-library part of the
@@ -284,13 +283,7 @@ fn a_hostile_program_is_harmless() {
         })
     };
     let run = plain.output().expect("run abuse");
-    assert_eq!(
-        String::from_utf8_lossy(&run.stdout),
-        "ok\n",
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    assert!(run.status.success());
+    assert_prints_ok(&run);
 
     let asan = ["-fsanitize=address", "-fno-omit-frame-pointer", "-g"];
     let Some(exe) = compile("tests/abuse", &out, &asan) else {
