@@ -19,7 +19,9 @@ typedef FxU8  GrAlpha_t;
 typedef FxU32 GrMipMapId_t;
 typedef FxU8  GrFog_t;
 typedef FxU32 GrContext_t;
-typedef int (*GrProc)(void);
+/* As 3dfx's glide.h: no prototype, so a program calls what grGetProcAddress returns
+ * with the extension's arguments. */
+typedef int (*GrProc)();
 typedef FxI32 GrChipID_t;
 typedef FxI32 GrCombineFunction_t;
 typedef FxI32 GrCombineFactor_t;

@@ -69,6 +69,10 @@ int main(int argc, char **argv)
     CHECK(grGetProcAddress("grChromaRangeExt") == NULL);
     /* Through void (*)(void) so -Wcast-function-type accepts the cast back. */
     XYExt xy = (XYExt)(void (*)(void))grGetProcAddress("guQueryResolutionXYExt");
+    /* Called with its arguments through GrProc itself, as 3dfx's test programs do. */
+    GrProc pending = grGetProcAddress("grSetNumPendingBuffers");
+    if (pending)
+        pending(2);
     FxU32 w = 0, h = 0;
     if (xy)
         xy(GR_RESOLUTION_800x600, &w, &h);
