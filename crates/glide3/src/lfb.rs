@@ -248,16 +248,18 @@ impl crate::Glide {
         stride: usize,
         dst: &mut [u8],
     ) -> bool {
-        if self
-            .lfb_lock_hw(
-                GR_LFB_READ_ONLY,
-                buffer,
-                GR_LFBWRITEMODE_ANY,
-                GR_ORIGIN_UPPER_LEFT,
-                false,
-            )
-            .is_none()
-        {
+        let locked = self.lfb_lock_hw(
+            GR_LFB_READ_ONLY,
+            buffer,
+            GR_LFBWRITEMODE_ANY,
+            GR_ORIGIN_UPPER_LEFT,
+            false,
+        );
+        // 3dfx's grLfbReadRegion locks through grLfbLock without GR_LFB_NOIDLE, which
+        // ends with grFinish (`nopCMD`) granted or not; grLfbWriteRegion's lock is
+        // GR_LFB_NOIDLE and writes none (glfb.c).
+        self.finish();
+        if locked.is_none() {
             return false;
         }
         let (width, height) = clip_to_window(x, y, width, height);

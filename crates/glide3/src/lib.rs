@@ -1402,18 +1402,25 @@ impl Glide {
         origin: u32,
         pixel_pipeline: bool,
     ) -> Option<LfbInfo> {
-        if lfb::lock_slot(ty).is_none() {
+        let r = if lfb::lock_slot(ty).is_none() {
             self.report(format!("grLfbLock: invalid lock type {ty:#x}"), false);
-            return None;
-        }
-        let r = self.lfb_lock_hw(ty, buffer, write_mode, origin, pixel_pipeline);
-        if r.is_none() {
-            self.report(
-                format!(
-                    "grLfbLock: lock refused (type {ty:#x}, buffer {buffer}, mode {write_mode:#x})"
-                ),
-                false,
-            );
+            None
+        } else {
+            let r = self.lfb_lock_hw(ty, buffer, write_mode, origin, pixel_pipeline);
+            if r.is_none() {
+                self.report(
+                    format!(
+                        "grLfbLock: lock refused (type {ty:#x}, buffer {buffer}, mode {write_mode:#x})"
+                    ),
+                    false,
+                );
+            }
+            r
+        };
+        // 3dfx's grLfbLock ends with grFinish (a `nopCMD` write) unless the type carries
+        // GR_LFB_NOIDLE, whether or not the lock was granted (glfb.c).
+        if ty & GR_LFB_NOIDLE == 0 {
+            self.finish();
         }
         r
     }

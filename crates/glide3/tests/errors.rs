@@ -85,3 +85,98 @@ fn other_modes_open() {
         );
     }
 }
+
+/// 3dfx's grLfbLock ends with grFinish (`nopCMD`) unless the type has GR_LFB_NOIDLE,
+/// granted or not, and so does the lock inside grLfbReadRegion; grLfbWriteRegion's lock
+/// is GR_LFB_NOIDLE and writes none (glfb.c).
+#[test]
+fn lfb_locks_idle_as_3dfx_does() {
+    use common::Op;
+    use sst1_regs::addr::NOP_CMD;
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
+    let nops = |rec: &Rec| {
+        rec.0
+            .borrow()
+            .iter()
+            .filter(|op| matches!(op, Op::W(a, 0) if a & 0x3fc == NOP_CMD))
+            .count()
+    };
+    let mut seen = nops(&rec);
+    let mut step = |g: &mut Glide, what: &str, f: &dyn Fn(&mut Glide), nop: usize| {
+        f(g);
+        let now = nops(&rec);
+        assert_eq!(now - seen, nop, "{what}");
+        seen = now;
+    };
+    step(
+        &mut g,
+        "read lock",
+        &|g| {
+            assert!(g
+                .lfb_lock(
+                    GR_LFB_READ_ONLY,
+                    GR_BUFFER_BACKBUFFER,
+                    GR_LFBWRITEMODE_ANY,
+                    0,
+                    false
+                )
+                .is_some());
+        },
+        1,
+    );
+    step(
+        &mut g,
+        "unlock",
+        &|g| assert!(g.lfb_unlock(GR_LFB_READ_ONLY, GR_BUFFER_BACKBUFFER)),
+        0,
+    );
+    step(
+        &mut g,
+        "write lock, no idle",
+        &|g| {
+            let ty = GR_LFB_WRITE_ONLY | GR_LFB_NOIDLE;
+            assert!(g
+                .lfb_lock(ty, GR_BUFFER_BACKBUFFER, GR_LFBWRITEMODE_565, 0, false)
+                .is_some());
+            assert!(g.lfb_unlock(ty, GR_BUFFER_BACKBUFFER));
+        },
+        0,
+    );
+    step(
+        &mut g,
+        "refused lock (bad buffer)",
+        &|g| {
+            assert!(g
+                .lfb_lock(GR_LFB_WRITE_ONLY, 7, GR_LFBWRITEMODE_565, 0, false)
+                .is_none());
+        },
+        1,
+    );
+    step(
+        &mut g,
+        "read region",
+        &|g| {
+            let mut out = [0u8; 8];
+            assert!(g.lfb_read_region(GR_BUFFER_BACKBUFFER, 0, 0, 2, 2, 4, &mut out));
+        },
+        1,
+    );
+    step(
+        &mut g,
+        "write region",
+        &|g| {
+            assert!(g.lfb_write_region(
+                GR_BUFFER_BACKBUFFER,
+                0,
+                0,
+                GR_LFB_SRC_FMT_565,
+                2,
+                2,
+                false,
+                4,
+                &[0; 8]
+            ));
+        },
+        0,
+    );
+}
