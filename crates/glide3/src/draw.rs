@@ -214,7 +214,8 @@ impl crate::Glide {
                 p |= req::W_TMU2 | req::ST_TMU2;
             }
         }
-        if st.cc_requires_it_rgb {
+        // gglide.c _grUpdateParamIndex: no iterated RGB in delta-0 mode.
+        if st.cc_requires_it_rgb && !self.cc_delta0 {
             p |= req::IT_DRGB;
         }
         if st.ac_requires_it_alpha {

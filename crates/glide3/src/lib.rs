@@ -29,6 +29,7 @@ mod hw;
 pub mod init;
 pub mod lfb;
 pub mod saved;
+pub mod sst;
 pub mod state;
 pub mod tex;
 pub mod video;
@@ -100,6 +101,10 @@ pub struct Glide {
     fan_tail: Option<(Vec<f32>, Vec<f32>)>,
     error_cb: Option<ErrorCallback>,
     last_error: Option<String>,
+    /// 3dfx's `gc->nopCMD`: `grSstIsBusy` has written a `nopCMD` not yet seen idle.
+    nop_cmd_sent: bool,
+    /// 3dfx's `gc->state.cc_delta0mode` (`guColorCombineFunction`'s `*_DELTA0` modes).
+    cc_delta0: bool,
 }
 
 impl std::fmt::Debug for Glide {
@@ -133,6 +138,8 @@ impl Glide {
             lfb_locks: [None; 2],
             strip_tail: None,
             fan_tail: None,
+            nop_cmd_sent: false,
+            cc_delta0: false,
             error_cb: None,
             last_error: None,
         };
@@ -406,6 +413,8 @@ impl Glide {
         // grGlideGetState (validates) + grGlideSetState (reloads everything).
         let saved = self.get_state();
         self.set_state(&saved);
+        // gsst.c grSstWinOpen: gc->nopCMD = FXFALSE.
+        self.nop_cmd_sent = false;
         true
     }
 
