@@ -767,8 +767,11 @@ pub unsafe extern "C" fn grGetRegistryOrEnvironmentStringExt(name: *const c_char
     .unwrap_or(std::ptr::null_mut())
 }
 
-/// `grSetNumPendingBuffers` (through `grGetProcAddress`): the number of swaps
-/// `grBufferSwap` lets queue up. Our swaps never wait, so it is accepted and unused.
+/// `grSetNumPendingBuffers` (exported, and in `grGetProcAddress`'s table): the number
+/// of swaps `grBufferSwap` lets queue up before it spins on the status register
+/// (gsst.c stores it; gglide.c `grBufferSwap` waits on it). Our swaps finish at once
+/// and never pend, so it is accepted and unused (3dfx would spin for ever below 0).
+#[no_mangle]
 pub extern "C" fn grSetNumPendingBuffers(_n: i32) {
     entry("grSetNumPendingBuffers", || {})
 }
@@ -1837,6 +1840,469 @@ pub unsafe extern "C" fn gu3dfLoad(filename: *const c_char, info: *mut Gu3dfInfo
             )
         };
         1
+    })
+}
+
+// ----- the rest of 3dfx's SST-1 Glide 3 exports -------------------------------------
+//
+// Entry points 3dfx's SST-1 Glide 3 library exports but its headers do not declare
+// (Glide 2 leftovers and utilities). Facts from 3dfx's source tree
+// (glide3x/sst1/glide3/src), file named at each function.
+
+/// `grSstVidMode(FxU32 whichSst, FxVideoTimingInfo *timing)` (disst.c): 3dfx keeps
+/// the pointer for board `whichSst` and its next `grSstWinOpen` programs those video
+/// timings instead of its table's. Not declared by 3dfx's headers (programs declare it
+/// themselves). Ours accepts and ignores the timings: `grSstWinOpen` uses the table's
+/// for the resolution asked (custom timings are not modelled yet). A board past
+/// 3dfx's `MAX_NUM_SST` (4) is an error, as in 3dfx's debug build.
+#[no_mangle]
+pub extern "C" fn grSstVidMode(which: u32, _timing: *mut c_void) {
+    entry("grSstVidMode", || {
+        if which >= 4 {
+            raise(
+                format!("grSstVidMode:  {which} greater than MAX_NUM_SST (4)"),
+                false,
+            );
+        }
+    })
+}
+
+/// `FxBool grSstIsBusy(void)` (gsst.c): writes `nopCMD` = 1 unless one is outstanding
+/// (which clears the pixel counters), then the status register's busy bit.
+/// UNVERIFIED: no timing model yet; our board is always idle, so this is FXFALSE
+/// and every call writes `nopCMD`. FXFALSE without a session.
+#[no_mangle]
+pub extern "C" fn grSstIsBusy() -> FxBool {
+    entry("grSstIsBusy", || with(|c| FxBool::from(c.glide.is_busy())))
+}
+
+/// `FxBool grSstVRetraceOn(void)` (gsst.c): FXTRUE when the status register's
+/// `SST_VRETRACE` bit is clear. UNVERIFIED: no timing model yet; our board's bit
+/// flips at every status read, so consecutive calls alternate. FXFALSE without a session.
+#[no_mangle]
+pub extern "C" fn grSstVRetraceOn() -> FxBool {
+    entry("grSstVRetraceOn", || {
+        with(|c| FxBool::from(c.glide.vretrace_on()))
+    })
+}
+
+/// `FxU32 grSstVideoLine(void)` (gsst.c): the `vRetrace` register as read.
+/// UNVERIFIED: no timing model yet; an idle board of ours reads 0. 0 without a session.
+#[no_mangle]
+pub extern "C" fn grSstVideoLine() -> u32 {
+    entry("grSstVideoLine", || with(|c| c.glide.video_line()))
+}
+
+/// `FxU32 grSstScreenWidth(void)` (disst.c): the open window's width (0 without a
+/// session, where 3dfx asserts).
+#[no_mangle]
+pub extern "C" fn grSstScreenWidth() -> u32 {
+    entry("grSstScreenWidth", || with(|c| c.glide.screen_size().0))
+}
+
+/// `FxU32 grSstScreenHeight(void)` (disst.c): the open window's height (0 without a
+/// session).
+#[no_mangle]
+pub extern "C" fn grSstScreenHeight() -> u32 {
+    entry("grSstScreenHeight", || with(|c| c.glide.screen_size().1))
+}
+
+/// `GrSstPerfStats_t` (3dfx glide.h): the FBI's five pixel counters.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GrSstPerfStats {
+    /// Pixels processed (`fbiPixelsIn`).
+    pub pixels_in: u32,
+    /// Pixels not drawn for the chroma key (`fbiChromaFail`).
+    pub chroma_fail: u32,
+    /// Pixels not drawn for the depth test (`fbiZfuncFail`).
+    pub z_func_fail: u32,
+    /// Pixels not drawn for the alpha test (`fbiAfuncFail`).
+    pub a_func_fail: u32,
+    /// Pixels drawn (`fbiPixelsOut`).
+    pub pixels_out: u32,
+}
+
+/// `void grSstPerfStats(GrSstPerfStats_t *)` (gsst.c): reads the five counters in
+/// 3dfx's order (single board: no SLI sum). NULL is an error; nothing is written
+/// without a session.
+#[no_mangle]
+pub unsafe extern "C" fn grSstPerfStats(stats: *mut GrSstPerfStats) {
+    entry("grSstPerfStats", || {
+        with(|c| {
+            if stats.is_null() {
+                c.glide.report_error("grSstPerfStats: NULL pointer");
+                return;
+            }
+            let mut v = [0u32; 5];
+            for (out, pname) in v.iter_mut().zip([
+                GR_STATS_PIXELS_IN,
+                GR_STATS_PIXELS_CHROMA_FAIL,
+                GR_STATS_PIXELS_DEPTHFUNC_FAIL,
+                GR_STATS_PIXELS_AFUNC_FAIL,
+                GR_STATS_PIXELS_OUT,
+            ]) {
+                let mut word = [0i32; 1];
+                c.glide.get(pname, 4, &mut word);
+                *out = word[0] as u32;
+            }
+            let [pixels_in, chroma_fail, z_func_fail, a_func_fail, pixels_out] = v;
+            // SAFETY: the caller's GrSstPerfStats_t (checked for null).
+            unsafe {
+                stats.write_unaligned(GrSstPerfStats {
+                    pixels_in,
+                    chroma_fail,
+                    z_func_fail,
+                    a_func_fail,
+                    pixels_out,
+                })
+            };
+        })
+    })
+}
+
+/// `void grTriStats(FxU32 *trisProcessed, FxU32 *trisDrawn)` (diglide.c): the
+/// triangle counters (`GR_STATS_TRIANGLES_IN`/`_OUT`). Null pointers are skipped;
+/// 0 and 0 without a session (3dfx's counters outlive `grGlideShutdown`).
+#[no_mangle]
+pub unsafe extern "C" fn grTriStats(processed: *mut u32, drawn: *mut u32) {
+    entry("grTriStats", || {
+        let s = with(|c| {
+            let s = c.glide.stats();
+            (s.triangles_in, s.triangles_drawn)
+        });
+        // SAFETY: the caller's counters (checked for null).
+        unsafe {
+            if let Some(p) = processed.as_mut() {
+                *p = s.0;
+            }
+            if let Some(d) = drawn.as_mut() {
+                *d = s.1;
+            }
+        }
+    })
+}
+
+/// `void grCheckForRoom(FxI32 n)` (gglide.c): waits until the command FIFO has room
+/// for `n` bytes. Our board's FIFO is always empty, so it returns at once.
+#[no_mangle]
+pub extern "C" fn grCheckForRoom(_n: i32) {
+    entry("grCheckForRoom", || {})
+}
+
+/// `GrTMUConfig_t` (3dfx fxglide.h).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GrTmuConfig {
+    /// `tmuRev`.
+    pub tmu_rev: c_int,
+    /// `tmuRam`, MiB.
+    pub tmu_ram: c_int,
+}
+
+/// `GrVoodooConfig_t` (3dfx fxglide.h, `GLIDE_NUM_TMU` 2 from glidesys.h); the largest
+/// member of the `sstBoard` union, so the union's layout.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GrVoodooConfig {
+    /// `fbRam`, MiB.
+    pub fb_ram: c_int,
+    /// `fbiRev`.
+    pub fbi_rev: c_int,
+    /// `nTexelfx`.
+    pub n_texelfx: c_int,
+    /// `sliDetect`.
+    pub sli_detect: FxBool,
+    /// `tmuConfig[GLIDE_NUM_TMU]`.
+    pub tmu_config: [GrTmuConfig; 2],
+}
+
+/// One entry of `GrHwConfiguration::SSTs`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GrSstConfig {
+    /// `GrSstType`: `GR_SSTTYPE_VOODOO` (0).
+    pub ty: c_int,
+    /// `sstBoard.VoodooConfig`.
+    pub board: GrVoodooConfig,
+}
+
+/// `GrHwConfiguration` (3dfx fxglide.h, `MAX_NUM_SST` 4): 148 bytes. Not in 3dfx's
+/// Glide 3 headers, so not in ours; Glide 2 programs bring their own.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GrHwConfiguration {
+    /// `num_sst`.
+    pub num_sst: c_int,
+    /// `SSTs[MAX_NUM_SST]`.
+    pub ssts: [GrSstConfig; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<GrHwConfiguration>() == 148);
+
+/// `FxBool grSstQueryBoards(GrHwConfiguration *)` (disst.c, valid before
+/// `grGlideInit`): sets `num_sst` (one board) and nothing else; FXTRUE.
+/// FXFALSE for NULL.
+#[no_mangle]
+pub unsafe extern "C" fn grSstQueryBoards(hwc: *mut GrHwConfiguration) -> FxBool {
+    entry("grSstQueryBoards", || {
+        if hwc.is_null() {
+            raise("grSstQueryBoards: NULL pointer".into(), false);
+            return 0;
+        }
+        // SAFETY: the caller's GrHwConfiguration (checked for null); only its first
+        // field is written, as 3dfx's.
+        unsafe { std::ptr::addr_of_mut!((*hwc).num_sst).write_unaligned(1) };
+        1
+    })
+}
+
+/// `FxBool grSstQueryHardware(GrHwConfiguration *)` (disst.c): copies the
+/// configuration `grGlideInit` detected (gpci.c `_grSstDetectResources`: one
+/// `GR_SSTTYPE_VOODOO` board, no SLI, each TMU's revision and memory) and returns
+/// whether a board was found. Without a session the configuration is all zeros and
+/// the answer FXFALSE, as 3dfx's before `grGlideInit`. TMUs past `GLIDE_NUM_TMU` (2)
+/// are counted in `nTexelfx` but have no entry. FXFALSE for NULL.
+#[no_mangle]
+pub unsafe extern "C" fn grSstQueryHardware(hwc: *mut GrHwConfiguration) -> FxBool {
+    entry("grSstQueryHardware", || {
+        if hwc.is_null() {
+            raise("grSstQueryHardware: NULL pointer".into(), false);
+            return 0;
+        }
+        let hw = with(|c| Some(c.glide.query_hardware()));
+        let mut out = GrHwConfiguration::default();
+        if let Some(h) = hw {
+            out.num_sst = h.num_sst as c_int;
+            let b = &mut out.ssts[0].board;
+            b.fb_ram = h.fb_ram as c_int;
+            b.fbi_rev = h.fbi_rev as c_int;
+            b.n_texelfx = h.num_tmu as c_int;
+            for t in b.tmu_config.iter_mut().take(h.num_tmu as usize) {
+                *t = GrTmuConfig {
+                    tmu_rev: h.tmu_rev as c_int,
+                    tmu_ram: h.tmu_ram as c_int,
+                };
+            }
+        }
+        // SAFETY: the caller's GrHwConfiguration (checked for null).
+        unsafe { hwc.write_unaligned(out) };
+        FxBool::from(out.num_sst > 0)
+    })
+}
+
+/// `void grSstConfigPipeline(GrChipID_t chip, GrSstRegister reg, FxU32 value)`
+/// (gsst.c; compiled out of later trees): writes `value` to word register `reg` of
+/// TMU `chip` (`GR_FBI` is 0, TMU 0's value). See `Glide::config_pipeline`.
+#[no_mangle]
+pub extern "C" fn grSstConfigPipeline(chip: i32, reg: u32, value: u32) {
+    entry("grSstConfigPipeline", || {
+        with(|c| c.glide.config_pipeline(chip as u32, reg, value))
+    })
+}
+
+/// `void grGlideShamelessPlug(const FxBool mode)` (diglide.c): the same switch as
+/// `grEnable`/`grDisable(GR_SHAMELESS_PLUG)` (distate.c), the 3Dfx logo drawn at
+/// each swap. Ours draws no logo, as with `grEnable(GR_SHAMELESS_PLUG)`.
+#[no_mangle]
+pub extern "C" fn grGlideShamelessPlug(mode: FxBool) {
+    entry("grGlideShamelessPlug", || {
+        with(|c| {
+            if mode != 0 {
+                c.glide.enable(GR_SHAMELESS_PLUG)
+            } else {
+                c.glide.disable(GR_SHAMELESS_PLUG)
+            }
+        })
+    })
+}
+
+/// `char *grGetRegistryOrEnvironmentString(char *)` (diget.c): `getenv`; the same
+/// function `grGetProcAddress` gives for `grGetRegistryOrEnvironmentStringExt`.
+#[no_mangle]
+pub unsafe extern "C" fn grGetRegistryOrEnvironmentString(name: *mut c_char) -> *mut c_char {
+    entry("grGetRegistryOrEnvironmentString", || {
+        // SAFETY: forwarded as the caller gave it.
+        unsafe { grGetRegistryOrEnvironmentStringExt(name) }
+    })
+}
+
+/// `void guAlphaSource(GrAlphaSource_t)` (gu.c): one `grAlphaCombine` per source;
+/// another value is an error and changes nothing.
+#[no_mangle]
+pub extern "C" fn guAlphaSource(mode: i32) {
+    entry("guAlphaSource", || {
+        with(|c| {
+            let (function, factor, local, other) = match mode as u32 {
+                GR_ALPHASOURCE_CC_ALPHA => (
+                    GR_COMBINE_FUNCTION_LOCAL,
+                    GR_COMBINE_FACTOR_NONE,
+                    GR_COMBINE_LOCAL_CONSTANT,
+                    GR_COMBINE_OTHER_NONE,
+                ),
+                GR_ALPHASOURCE_ITERATED_ALPHA => (
+                    GR_COMBINE_FUNCTION_LOCAL,
+                    GR_COMBINE_FACTOR_NONE,
+                    GR_COMBINE_LOCAL_ITERATED,
+                    GR_COMBINE_OTHER_NONE,
+                ),
+                GR_ALPHASOURCE_TEXTURE_ALPHA => (
+                    GR_COMBINE_FUNCTION_SCALE_OTHER,
+                    GR_COMBINE_FACTOR_ONE,
+                    GR_COMBINE_LOCAL_NONE,
+                    GR_COMBINE_OTHER_TEXTURE,
+                ),
+                GR_ALPHASOURCE_TEXTURE_ALPHA_TIMES_ITERATED_ALPHA => (
+                    GR_COMBINE_FUNCTION_SCALE_OTHER,
+                    GR_COMBINE_FACTOR_LOCAL,
+                    GR_COMBINE_LOCAL_ITERATED,
+                    GR_COMBINE_OTHER_TEXTURE,
+                ),
+                _ => {
+                    c.glide
+                        .report_error("guAlphaSource: unknown alpha source mode");
+                    return;
+                }
+            };
+            c.glide.alpha_combine(function, factor, local, other, false);
+        })
+    })
+}
+
+/// `void guColorCombineFunction(GrColorCombineFnc_t)` (gu.c): leaves delta-0 mode,
+/// then one `grColorCombine` per function; the two `*_DELTA0` functions enter
+/// delta-0 mode first (see `Glide::color_combine_delta0`). Another value is an error
+/// after leaving delta-0 mode, as 3dfx's.
+#[no_mangle]
+pub extern "C" fn guColorCombineFunction(fnc: i32) {
+    entry("guColorCombineFunction", || {
+        with(|c| {
+            use glide::consts::{
+                GR_COMBINE_FACTOR_LOCAL as F_LOCAL, GR_COMBINE_FACTOR_LOCAL_ALPHA as F_LALPHA,
+                GR_COMBINE_FACTOR_NONE as F_NONE, GR_COMBINE_FACTOR_ONE as F_ONE,
+                GR_COMBINE_FACTOR_TEXTURE_ALPHA as F_TALPHA, GR_COMBINE_FUNCTION_BLEND as BLEND,
+                GR_COMBINE_FUNCTION_LOCAL as LOCAL, GR_COMBINE_FUNCTION_SCALE_OTHER as SCALE,
+                GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL as SCALE_ADD,
+                GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA as SCALE_ADD_ALPHA,
+                GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL as SCALE_SUB,
+                GR_COMBINE_FUNCTION_ZERO as ZERO, GR_COMBINE_LOCAL_CONSTANT as L_CONST,
+                GR_COMBINE_LOCAL_ITERATED as L_ITER, GR_COMBINE_LOCAL_NONE as L_NONE,
+                GR_COMBINE_OTHER_ITERATED as O_ITER, GR_COMBINE_OTHER_NONE as O_NONE,
+                GR_COMBINE_OTHER_TEXTURE as O_TEX,
+            };
+            c.glide.color_combine_delta0(false);
+            let (function, factor, local, other, invert) = match fnc as u32 {
+                GR_COLORCOMBINE_ZERO => (ZERO, F_NONE, L_NONE, O_NONE, false),
+                GR_COLORCOMBINE_CCRGB => (LOCAL, F_NONE, L_CONST, O_NONE, false),
+                GR_COLORCOMBINE_ITRGB_DELTA0 | GR_COLORCOMBINE_ITRGB => {
+                    (LOCAL, F_NONE, L_ITER, O_NONE, false)
+                }
+                GR_COLORCOMBINE_DECAL_TEXTURE => (SCALE, F_ONE, L_NONE, O_TEX, false),
+                GR_COLORCOMBINE_TEXTURE_TIMES_CCRGB => (SCALE, F_LOCAL, L_CONST, O_TEX, false),
+                GR_COLORCOMBINE_TEXTURE_TIMES_ITRGB_DELTA0
+                | GR_COLORCOMBINE_TEXTURE_TIMES_ITRGB => (SCALE, F_LOCAL, L_ITER, O_TEX, false),
+                GR_COLORCOMBINE_TEXTURE_TIMES_ITRGB_ADD_ALPHA => {
+                    (SCALE_ADD_ALPHA, F_LOCAL, L_ITER, O_TEX, false)
+                }
+                GR_COLORCOMBINE_TEXTURE_TIMES_ALPHA => (SCALE, F_LALPHA, L_NONE, O_TEX, false),
+                GR_COLORCOMBINE_TEXTURE_TIMES_ALPHA_ADD_ITRGB => {
+                    (SCALE_ADD, F_LALPHA, L_ITER, O_TEX, false)
+                }
+                GR_COLORCOMBINE_TEXTURE_ADD_ITRGB => (SCALE_ADD, F_ONE, L_ITER, O_TEX, false),
+                GR_COLORCOMBINE_TEXTURE_SUB_ITRGB => (SCALE_SUB, F_ONE, L_ITER, O_TEX, false),
+                GR_COLORCOMBINE_CCRGB_BLEND_ITRGB_ON_TEXALPHA => {
+                    (BLEND, F_TALPHA, L_CONST, O_ITER, false)
+                }
+                GR_COLORCOMBINE_DIFF_SPEC_A => (SCALE_ADD, F_LALPHA, L_ITER, O_TEX, false),
+                GR_COLORCOMBINE_DIFF_SPEC_B => (SCALE_ADD_ALPHA, F_LOCAL, L_ITER, O_TEX, false),
+                GR_COLORCOMBINE_ONE => (ZERO, F_NONE, L_NONE, O_NONE, true),
+                _ => {
+                    c.glide
+                        .report_error("guColorCombineFunction: unsupported color combine function");
+                    return;
+                }
+            };
+            if matches!(
+                fnc as u32,
+                GR_COLORCOMBINE_ITRGB_DELTA0 | GR_COLORCOMBINE_TEXTURE_TIMES_ITRGB_DELTA0
+            ) {
+                c.glide.color_combine_delta0(true);
+            }
+            c.glide
+                .color_combine(function, factor, local, other, invert);
+        })
+    })
+}
+
+/// `FxU32 guEndianSwapWords(FxU32)` (gu.c): the two 16-bit halves exchanged.
+#[no_mangle]
+pub extern "C" fn guEndianSwapWords(value: u32) -> u32 {
+    entry("guEndianSwapWords", || value.rotate_left(16))
+}
+
+/// `FxU16 guEndianSwapBytes(FxU16)` (gu.c): the two bytes exchanged.
+#[no_mangle]
+pub extern "C" fn guEndianSwapBytes(value: u16) -> u16 {
+    entry("guEndianSwapBytes", || value.swap_bytes())
+}
+
+extern "C" {
+    fn malloc(size: usize) -> *mut c_void;
+}
+
+/// `FxU16 *guTexCreateColorMipMap(void)` (gu.c): a `malloc`ed RGB565 mipmap of nine
+/// levels, 256x256 down to 1x1, each one colour: red, green, blue, white, black, red,
+/// green, blue, white (174,762 bytes; the program `free`s it). NULL when `malloc` fails.
+#[no_mangle]
+pub extern "C" fn guTexCreateColorMipMap() -> *mut u16 {
+    entry("guTexCreateColorMipMap", || {
+        const COLORS: [u16; 9] = [
+            0xf800, 0x07e0, 0x001f, 0xffff, 0x0000, 0xf800, 0x07e0, 0x001f, 0xffff,
+        ];
+        let texels: usize = (0..9).map(|l| (256usize >> l) * (256 >> l)).sum();
+        // SAFETY: malloc of a fixed size; the result is checked for null.
+        let p = unsafe { malloc(texels * 2) } as *mut u16;
+        if p.is_null() {
+            return None;
+        }
+        let mut at = 0;
+        for (l, color) in COLORS.iter().enumerate() {
+            let n = (256usize >> l) * (256 >> l);
+            for i in at..at + n {
+                // SAFETY: i < texels, inside the allocation.
+                unsafe { p.add(i).write(*color) };
+            }
+            at += n;
+        }
+        Some(p)
+    })
+    .unwrap_or(std::ptr::null_mut())
+}
+
+/// `void _grChromaModeExt(GrChromakeyMode_t)` (distate.c): stores the mode as
+/// `grChromakeyMode` does; on the SST-1 only `GR_CHROMAKEY_ENABLE` enables the key,
+/// any other value disables it (gglide.c `_grChromakeyMode`).
+#[no_mangle]
+pub extern "C" fn _grChromaModeExt(mode: i32) {
+    entry("_grChromaModeExt", || {
+        with(|c| {
+            c.glide
+                .chromakey_mode(if mode as u32 == GR_CHROMAKEY_ENABLE {
+                    GR_CHROMAKEY_ENABLE
+                } else {
+                    GR_CHROMAKEY_DISABLE
+                })
+        })
+    })
+}
+
+/// `void _grChromaRangeExt(GrColor_t color, GrColor_t range, GrChromaRangeMode_t)`
+/// (distate.c): stores the key colour as `grChromakeyValue` does, and the range and
+/// mode, which the SST-1 has no hardware for (gglide.c `_grChromaRange`).
+#[no_mangle]
+pub extern "C" fn _grChromaRangeExt(color: u32, range: u32, mode: i32) {
+    entry("_grChromaRangeExt", || {
+        with(|c| c.glide.chroma_range(color, range, mode as u32))
     })
 }
 

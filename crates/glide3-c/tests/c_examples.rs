@@ -347,3 +347,19 @@ fn voodoo_model_chooses_the_board_model() {
     );
     assert!(front(&bogus) == front(&hardware));
 }
+
+/// The entry points 3dfx's SST-1 Glide 3 exports without declaring them (tests/
+/// sst1_extras.c declares them itself, `grSstVidMode` with its own
+/// `FxVideoTimingInfo`): each one's outcome, checked from C, prints "ok".
+#[test]
+fn undeclared_3dfx_entry_points_link_and_work() {
+    let out = std::env::temp_dir().join(format!("glide3-c-test-{}-extras", std::process::id()));
+    std::fs::create_dir_all(&out).expect("temp dir");
+    let exe = build("tests/sst1_extras", &out);
+    let run = Command::new(&exe)
+        .env("LD_LIBRARY_PATH", lib_dir())
+        .env_remove("VOODOO_EXTRAS_TEST")
+        .output()
+        .expect("run sst1_extras");
+    assert_prints_ok(&run);
+}
