@@ -12,6 +12,10 @@ use glide3::*;
 use std::ffi::{c_char, c_void, CStr};
 use std::sync::Mutex;
 
+extern "C" {
+    fn free(p: *mut c_void);
+}
+
 /// Calls of one case, in a fresh session.
 const CALLS_PER_CASE: usize = 40;
 
@@ -290,7 +294,7 @@ impl Fuzz {
 
     /// Calls that take pointers.
     fn call_with_memory(&mut self) -> String {
-        match self.rng.below(26) {
+        match self.rng.below(27) {
             0 => {
                 let p = self.vertex();
                 // SAFETY: a vertex of the arena.
@@ -624,6 +628,44 @@ impl Fuzz {
                     gu3dfGetInfo(std::ptr::null(), std::ptr::null_mut());
                 }
                 "null pointers".into()
+            }
+            25 => {
+                // 3dfx's undeclared SST-1 entry points (issue 15 item 2).
+                let mut hwc = GrHwConfiguration::default();
+                let mut stats = GrSstPerfStats::default();
+                let (mut tris_in, mut tris_out) = (0, 0);
+                // SAFETY: pointers to locals, or null (checked by every entry point).
+                unsafe {
+                    grSstQueryBoards(&mut hwc);
+                    grSstQueryHardware(&mut hwc);
+                    grSstQueryBoards(std::ptr::null_mut());
+                    grSstQueryHardware(std::ptr::null_mut());
+                    grSstPerfStats(&mut stats);
+                    grSstPerfStats(std::ptr::null_mut());
+                    grTriStats(&mut tris_in, &mut tris_out);
+                    grTriStats(std::ptr::null_mut(), std::ptr::null_mut());
+                    grGetRegistryOrEnvironmentString(c"HOME".as_ptr() as *mut c_char);
+                    grGetRegistryOrEnvironmentString(std::ptr::null_mut());
+                }
+                grSstVidMode(self.rng.int(), std::ptr::null_mut());
+                grSstIsBusy();
+                grSstVRetraceOn();
+                grSstVideoLine();
+                grSstScreenWidth();
+                grSstScreenHeight();
+                grCheckForRoom(self.rng.i());
+                grSstConfigPipeline(self.rng.i(), self.rng.int(), self.rng.int());
+                grGlideShamelessPlug(self.rng.i());
+                guAlphaSource(self.rng.i());
+                guColorCombineFunction(self.rng.i());
+                guEndianSwapBytes(self.rng.int() as u16);
+                guEndianSwapWords(self.rng.int());
+                _grChromaModeExt(self.rng.i());
+                _grChromaRangeExt(self.rng.int(), self.rng.int(), self.rng.i());
+                let mip = guTexCreateColorMipMap();
+                // SAFETY: the library's malloc'ed mipmap (or null), freed once.
+                unsafe { free(mip as *mut c_void) };
+                "3dfx's undeclared entry points".into()
             }
             _ if self.rng.chance(20) => {
                 grGlideShutdown();
