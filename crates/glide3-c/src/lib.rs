@@ -2279,6 +2279,80 @@ pub extern "C" fn guTexCreateColorMipMap() -> *mut u16 {
     .unwrap_or(std::ptr::null_mut())
 }
 
+/// 3dfx's `guEncodeRLE16` loop (gu.c), step for step, over the `src.len()` pixels the
+/// caller declared: words of `length << 16 | color`, `color` read as a signed 16-bit
+/// value (so for colours from 0x8000 up it is sign-extended over the length, and never
+/// equals the next pixel, which is read unsigned: their runs are 1 long). The loop
+/// counts one pixel too many per run, so it stops early or runs on; where 3dfx's would
+/// then read past the image, ours stops there (UNVERIFIED what 3dfx's gives then), and
+/// where its 16-bit run length would wrap (32,768 equal pixels), ours ends the run.
+/// Returns the bytes written (or, with `dst` None, that would be).
+fn encode_rle16(src: &[u16], mut dst: Option<&mut dyn FnMut(usize, u32)>, count: i32) -> i32 {
+    let mut remaining = count;
+    let (mut at, mut bytes) = (0usize, 0i32);
+    loop {
+        let more = remaining != 0;
+        remaining = remaining.wrapping_sub(1);
+        if !more {
+            return bytes;
+        }
+        let Some(&first) = src.get(at) else {
+            return bytes;
+        };
+        let color = i32::from(first as i16);
+        let mut length: i16 = 1;
+        while remaining.wrapping_sub(i32::from(length)) != 0 {
+            let Some(&next) = src.get(at + length as usize) else {
+                return bytes;
+            };
+            if i32::from(next) != color || length == i16::MAX {
+                break;
+            }
+            length += 1;
+        }
+        if let Some(put) = dst.as_mut() {
+            put(bytes as usize / 4, (length as u32) << 16 | color as u32);
+        }
+        bytes += 4;
+        at += length as usize;
+        remaining = remaining.wrapping_sub(i32::from(length));
+    }
+}
+
+/// `int guEncodeRLE16(void *dst, void *src, FxU32 width, FxU32 height)` (gu.c):
+/// RGB565 pixels into 32-bit run words, `dst` NULL to count the bytes only; see
+/// [`encode_rle16`] for 3dfx's loop, which this follows (its off-by-one included).
+/// `dst` must hold the byte count a NULL-`dst` call returns. NULL `src` gives 0.
+#[no_mangle]
+pub unsafe extern "C" fn guEncodeRLE16(
+    dst: *mut c_void,
+    src: *const c_void,
+    width: u32,
+    height: u32,
+) -> c_int {
+    entry("guEncodeRLE16", || {
+        if src.is_null() {
+            return 0;
+        }
+        let count = width.wrapping_mul(height);
+        let pixels = (width as usize)
+            .saturating_mul(height as usize)
+            .min(isize::MAX as usize / 2);
+        // SAFETY: the caller's width x height image of 16-bit pixels.
+        let src = unsafe { std::slice::from_raw_parts(src as *const u16, pixels) };
+        let dst = dst as *mut u32;
+        let mut put = |i: usize, word: u32| {
+            // SAFETY: the caller sized `dst` from a NULL-`dst` call: word i is inside.
+            unsafe { dst.add(i).write_unaligned(word) }
+        };
+        encode_rle16(
+            src,
+            (!dst.is_null()).then_some(&mut put as &mut dyn FnMut(usize, u32)),
+            count as i32,
+        )
+    })
+}
+
 /// `void _grChromaModeExt(GrChromakeyMode_t)` (distate.c): stores the mode as
 /// `grChromakeyMode` does; on the SST-1 only `GR_CHROMAKEY_ENABLE` enables the key,
 /// any other value disables it (gglide.c `_grChromakeyMode`).
@@ -2354,6 +2428,36 @@ mod tests {
                 "grDepthBufferFunction: invalid compare function",
             ]
         );
+    }
+
+    /// 3dfx's RLE16 loop, off-by-one and sign extension included (gu.c).
+    #[test]
+    fn rle16_follows_3dfx_loop() {
+        let run = |src: &[u16]| {
+            let mut words = Vec::new();
+            let n = encode_rle16(
+                src,
+                Some(&mut |i: usize, w: u32| {
+                    assert_eq!(i, words.len());
+                    words.push(w)
+                }),
+                src.len() as i32,
+            );
+            assert_eq!(encode_rle16(src, None, src.len() as i32), n);
+            assert_eq!(n as usize, 4 * words.len());
+            words
+        };
+        // The count drops one pixel per run: the last pixel is never encoded.
+        assert_eq!(run(&[0x1234, 0x0042]), [0x0001_1234]);
+        assert_eq!(run(&[7, 7, 7, 9]), [0x0003_0007]);
+        // From 0x8000 up the colour is sign-extended over the length.
+        assert_eq!(run(&[0x8000, 0x8000]), [0xffff_8000]);
+        // An odd count runs on past its end: we stop where 3dfx reads past the image.
+        assert_eq!(run(&[1, 2, 3]), [0x0001_0001, 0x0001_0002]);
+        assert_eq!(run(&[]), [0u32; 0]);
+        // A run of 40,000 equal pixels ends at 32,767 (3dfx's length would wrap).
+        let long = vec![5u16; 40_000];
+        assert_eq!(run(&long), [0x7fff_0005, 0x1c3f_0005]);
     }
 
     /// Every function this library exports runs its body through `entry` under its own

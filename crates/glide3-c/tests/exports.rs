@@ -98,6 +98,7 @@ fn exported_symbols_are_the_committed_list() {
         "guTexCreateColorMipMap",
         "_grChromaModeExt",
         "_grChromaRangeExt",
+        "guEncodeRLE16",
     ] {
         assert!(exported.contains(name), "{name} is not exported");
     }

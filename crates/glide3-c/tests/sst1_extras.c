@@ -45,6 +45,7 @@ FX_ENTRY void FX_CALL guColorCombineFunction(GrColorCombineFnc_t fnc);
 FX_ENTRY FxU16 FX_CALL guEndianSwapBytes(FxU16 value);
 FX_ENTRY FxU32 FX_CALL guEndianSwapWords(FxU32 value);
 FX_ENTRY FxU16 *FX_CALL guTexCreateColorMipMap(void);
+FX_ENTRY int FX_CALL guEncodeRLE16(void *dst, void *src, FxU32 width, FxU32 height);
 FX_ENTRY void FX_CALL _grChromaModeExt(GrChromakeyMode_t mode);
 FX_ENTRY void FX_CALL _grChromaRangeExt(GrColor_t color, GrColor_t range, GrChromaRangeMode_t mode);
 
@@ -106,6 +107,15 @@ int main(void)
     CHECK(grSstScreenWidth() == 0 && grSstIsBusy() == FXFALSE);
     CHECK(guEndianSwapBytes(0x1234) == 0x3412 && guEndianSwapBytes(0xff00) == 0x00ff);
     CHECK(guEndianSwapWords(0x12345678u) == 0x56781234u);
+
+    /* 3dfx's RLE16 loop drops one pixel of count per run: 7 7 7 9 is one run of three
+     * 7s; from 0x8000 up a colour is sign-extended over the length. */
+    FxU16 img[4] = { 7, 7, 7, 9 }, img2[2] = { 0x8000, 0x8000 };
+    FxU32 rle[4] = { 0, 0, 0, 0 };
+    CHECK(guEncodeRLE16(NULL, img, 4, 1) == 4);
+    CHECK(guEncodeRLE16(rle, img, 2, 2) == 4 && rle[0] == 0x00030007u && rle[1] == 0);
+    CHECK(guEncodeRLE16(rle, img2, 2, 1) == 4 && rle[0] == 0xffff8000u);
+    CHECK(guEncodeRLE16(rle, NULL, 2, 1) == 0);
 
     grGlideInit();
     grErrorSetCallback(on_error);
