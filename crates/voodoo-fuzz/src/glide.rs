@@ -662,6 +662,16 @@ impl Fuzz {
                 guEndianSwapWords(self.rng.int());
                 _grChromaModeExt(self.rng.i());
                 _grChromaRangeExt(self.rng.int(), self.rng.int(), self.rng.i());
+                // At most 256 x 256 pixels of the texel arena; dst sized by a NULL call.
+                let (w, h) = (self.rng.below(257) as u32, self.rng.below(257) as u32);
+                let src = self.mem.texels.as_ptr() as *const c_void;
+                // SAFETY: w x h 16-bit pixels lie inside the arena; dst holds the
+                // bytes the NULL call counts.
+                unsafe {
+                    let n = guEncodeRLE16(std::ptr::null_mut(), src, w, h);
+                    let mut dst = vec![0u32; n.max(0) as usize / 4];
+                    guEncodeRLE16(dst.as_mut_ptr() as *mut c_void, src, w, h);
+                }
                 let mip = guTexCreateColorMipMap();
                 // SAFETY: the library's malloc'ed mipmap (or null), freed once.
                 unsafe { free(mip as *mut c_void) };
