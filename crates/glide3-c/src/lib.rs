@@ -2321,7 +2321,7 @@ fn encode_rle16(src: &[u16], mut dst: Option<&mut dyn FnMut(usize, u32)>, count:
 
 /// `int guEncodeRLE16(void *dst, void *src, FxU32 width, FxU32 height)` (gu.c):
 /// RGB565 pixels into 32-bit run words, `dst` NULL to count the bytes only; see
-/// [`encode_rle16`] for 3dfx's loop, which this follows (its off-by-one included).
+/// `encode_rle16` for 3dfx's loop, which this follows (its off-by-one included).
 /// `dst` must hold the byte count a NULL-`dst` call returns. NULL `src` gives 0.
 #[no_mangle]
 pub unsafe extern "C" fn guEncodeRLE16(
