@@ -154,34 +154,26 @@ fn delta0_triangles_carry_no_iterated_rgb() {
             })
             .count()
     };
-    g.color_combine(
-        GR_COMBINE_FUNCTION_LOCAL,
-        GR_COMBINE_FACTOR_NONE,
-        GR_COMBINE_LOCAL_ITERATED,
-        GR_COMBINE_OTHER_NONE,
-        false,
-    );
+    // The colour combine of a Gouraud triangle, set again after each mode change.
+    let iterated = |g: &mut Glide| {
+        g.color_combine(
+            GR_COMBINE_FUNCTION_LOCAL,
+            GR_COMBINE_FACTOR_NONE,
+            GR_COMBINE_LOCAL_ITERATED,
+            GR_COMBINE_OTHER_NONE,
+            false,
+        )
+    };
+    iterated(&mut g);
     assert_eq!(
         rgb_writes(&mut g, &rec),
         9,
         "Gouraud: R, G, B starts and slopes"
     );
     g.color_combine_delta0(true);
-    g.color_combine(
-        GR_COMBINE_FUNCTION_LOCAL,
-        GR_COMBINE_FACTOR_NONE,
-        GR_COMBINE_LOCAL_ITERATED,
-        GR_COMBINE_OTHER_NONE,
-        false,
-    );
+    iterated(&mut g);
     assert_eq!(rgb_writes(&mut g, &rec), 0, "delta-0: none");
     g.color_combine_delta0(false);
-    g.color_combine(
-        GR_COMBINE_FUNCTION_LOCAL,
-        GR_COMBINE_FACTOR_NONE,
-        GR_COMBINE_LOCAL_ITERATED,
-        GR_COMBINE_OTHER_NONE,
-        false,
-    );
+    iterated(&mut g);
     assert_eq!(rgb_writes(&mut g, &rec), 9);
 }

@@ -74,15 +74,7 @@ fn triangles(v: &[[f32; 5]], tris: &[[usize; 3]]) -> Vec<Op> {
 #[test]
 fn strips_fans_and_polygons_are_their_triangles() {
     let v = vertices();
-    let strip = [
-        [0, 1, 2],
-        [2, 1, 3],
-        [2, 3, 4],
-        [4, 3, 5],
-        [4, 5, 6],
-        [6, 5, 7],
-    ];
-    assert_eq!(list(None, GR_TRIANGLE_STRIP, &v), triangles(&v, &strip));
+    assert_eq!(list(None, GR_TRIANGLE_STRIP, &v), triangles(&v, &STRIP));
     let fan: Vec<[usize; 3]> = (1..7).map(|i| [0, i, i + 1]).collect();
     assert_eq!(list(None, GR_TRIANGLE_FAN, &v), triangles(&v, &fan));
     assert_eq!(list(None, GR_POLYGON, &v), triangles(&v, &fan));
@@ -139,15 +131,7 @@ fn contiguous_arrays_are_read_by_stride() {
     let (mut g, rec) = open();
     g.draw_vertex_array_contiguous(GR_TRIANGLE_STRIP, &data, 8, 24);
     let ops = rec.0.borrow().clone();
-    let strip = [
-        [0, 1, 2],
-        [2, 1, 3],
-        [2, 3, 4],
-        [4, 3, 5],
-        [4, 5, 6],
-        [6, 5, 7],
-    ];
-    assert_eq!(ops, triangles(&v, &strip));
+    assert_eq!(ops, triangles(&v, &STRIP));
     // A zero stride is refused and draws nothing.
     let (mut g, rec) = open();
     g.draw_vertex_array_contiguous(GR_TRIANGLE_STRIP, &data, 8, 0);
