@@ -435,22 +435,13 @@ fn blend_expected(a: Blend) -> u16 {
     rgb565_truncated(r, g, b)
 }
 
-/// `BlendArithmetic::Majority` (default): the pixel two of the three arithmetics write,
-/// else MAME's. Here no two agree on the whole pixel (MAME 0x93ee, DOSBox 0x8bce, 86Box
-/// 0x93ce: red agrees between MAME and 86Box, green between DOSBox and 86Box), so it is
-/// MAME's, not a mix of channels.
-#[test]
-fn blend_arithmetic_majority() {
-    assert_eq!(blend_program(BlendArithmetic::Majority), 0x93ee);
-    assert_eq!(blended_pixel(BlendProfile::default(), 0, 0x30), 0x93ee);
-}
-
-/// `BlendArithmetic::PerProduct`: replicated destination, `x+1` / `256-x`,
-/// each product `>> 8`.
+/// `BlendArithmetic::PerProduct` (the hardware model's): replicated destination,
+/// `x+1` / `256-x`, each product `>> 8`.
 #[test]
 fn blend_arithmetic_per_product() {
     assert_eq!(blend_expected(Blend::PerProduct), 0x93ee);
     assert_eq!(blend_program(BlendArithmetic::PerProduct), 0x93ee);
+    assert_eq!(blended_pixel(BlendProfile::default(), 0, 0x30), 0x93ee);
 }
 
 /// `BlendArithmetic::Mame`: as `PerProduct`, but the sum of the products `>> 8` once. At
@@ -501,20 +492,24 @@ fn dithered_blend(a: Blend, d: u32) -> u16 {
     dither565(r, g, b, d)
 }
 
-/// `Dither2x2Blend::Dosbox` (default): 2x2-dithered pixels blend with DOSBox Staging's
-/// arithmetic (the classic matrix's pairing); 4x4-dithered ones keep `arithmetic` (MAME).
+/// `Dither2x2Blend::ZeroFill` (default): 2x2-dithered destinations are widened by zero
+/// fill, which with `PerProduct` is DOSBox Staging's arithmetic; 4x4-dithered ones keep
+/// `arithmetic`'s widening.
 #[test]
-fn dither_2x2_blend_dosbox() {
+fn dither_2x2_blend_zero_fill() {
     assert_eq!(dithered_blend(Blend::Dosbox, 2), 0x8bcd);
     assert_eq!(
-        dither_2x2_blend_program(Dither2x2Blend::Dosbox, fbz::DITHER_2X2),
+        dither_2x2_blend_program(Dither2x2Blend::ZeroFill, fbz::DITHER_2X2),
         0x8bcd
     );
     assert_eq!(dithered_blend(Blend::PerProduct, 0), 0x8bce);
-    assert_eq!(dither_2x2_blend_program(Dither2x2Blend::Dosbox, 0), 0x8bce);
+    assert_eq!(
+        dither_2x2_blend_program(Dither2x2Blend::ZeroFill, 0),
+        0x8bce
+    );
 }
 
-/// `Dither2x2Blend::SameAsArithmetic`: every pixel blends with `arithmetic` (MAME).
+/// `Dither2x2Blend::SameAsArithmetic`: every pixel is widened as `arithmetic` widens it.
 #[test]
 fn dither_2x2_blend_same_as_arithmetic() {
     assert_eq!(dithered_blend(Blend::PerProduct, 2), 0x8bce);

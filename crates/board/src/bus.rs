@@ -1,13 +1,12 @@
 //! Decoding of the PCI aperture (spec 4 and 5): register chip select and remapping,
 //! the LFB and texture regions, and PCI configuration space (spec 6).
 
-use pixelfx::{Command, NoTexture};
-use sst1_regs::{addr, map, RegisterBus};
-use texelfx::ChainModel;
-
 use crate::chain::Chain;
 use crate::diagnostics::Diagnostic;
+use crate::model::{with_model, ChipModel};
 use crate::Board;
+use pixelfx::{Command, NoTexture};
+use sst1_regs::{addr, map, RegisterBus};
 
 /// Start of the linear frame buffer region.
 const LFB_BASE: u32 = 0x40_0000;
@@ -40,7 +39,7 @@ impl Board {
         (offset, chips)
     }
 
-    fn write_register(&mut self, bus_addr: u32, value: u32) {
+    fn write_register<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
         let (offset, chips) = self.decode_register(bus_addr);
         let Some(desc) = map::desc_of(offset) else {
             self.diagnostics.note(Diagnostic::ReservedWrite);
@@ -68,20 +67,20 @@ impl Board {
         if chips & 1 == 0 || !desc.chips.contains(map::Chips::FBI) {
             return;
         }
-        match self.fbi.write_reg(offset, value) {
+        match self.fbi.write_reg::<M>(offset, value) {
             Command::None => {}
-            Command::Triangle => self.triangle(),
-            Command::Fastfill => self.fbi.fastfill(),
+            Command::Triangle => self.triangle::<M>(),
+            Command::Fastfill => self.fbi.fastfill::<M>(),
             Command::Swap => self.fbi.swap(),
         }
     }
 
     /// Run a triangle command with the TMU chain (spec 5.15).
-    fn triangle(&mut self) {
+    fn triangle<M: ChipModel>(&mut self) {
         let cp = sst1_regs::FbzColorPath(self.fbi.reg(addr::FBZ_COLOR_PATH));
         let init3 = sst1_regs::FbiInit3(self.fbi.reg(addr::FBI_INIT3));
         let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
-        let profile = self.fbi.profile();
+        let profile = M::pixel(&self.fbi.profile());
         // With ParamOrigin::RoundedVertex (86Box) the correction lasts this triangle only.
         let saved = (cp.param_adjust() && !profile.param_origin.writes_back()).then(|| {
             let starts: Vec<_> = self.tmus.iter().map(|t| t.start_registers()).collect();
@@ -100,18 +99,12 @@ impl Board {
         }
         if texturing {
             for t in &mut self.tmus {
-                t.begin_triangle();
+                t.begin_triangle::<M>();
             }
-            let model = self
-                .tmus
-                .first()
-                .map_or(ChainModel::Full, |t| t.profile().chain);
-            self.fbi.draw_triangle(&mut Chain {
-                tmus: &mut self.tmus,
-                model,
-            });
+            self.fbi
+                .draw_triangle::<M, _>(&mut Chain::<M>::new(&mut self.tmus));
         } else {
-            self.fbi.draw_triangle(&mut NoTexture);
+            self.fbi.draw_triangle::<M, _>(&mut NoTexture);
         }
         if let Some((params, starts)) = saved {
             self.fbi.params = params;
@@ -131,16 +124,24 @@ impl Board {
     }
 }
 
-impl RegisterBus for Board {
-    fn write32(&mut self, bus_addr: u32, value: u32) {
+impl Board {
+    /// A bus write, run by model `M` (the board's).
+    fn write32_as<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
-            self.write_register(bus_addr, value);
+            self.write_register::<M>(bus_addr, value);
         } else if bus_addr < TEX_BASE {
-            self.fbi.lfb_write(bus_addr - LFB_BASE, value);
+            self.fbi.lfb_write::<M>(bus_addr - LFB_BASE, value);
         } else {
             self.write_texture(bus_addr, value);
         }
+    }
+}
+
+impl RegisterBus for Board {
+    fn write32(&mut self, bus_addr: u32, value: u32) {
+        // The one run-time choice of model: every stage below is compiled for it.
+        with_model!(self.model.kind(), M => self.write32_as::<M>(bus_addr, value))
     }
 
     fn read32(&mut self, bus_addr: u32) -> u32 {

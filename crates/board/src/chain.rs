@@ -1,29 +1,45 @@
 //! TMU chaining (spec 3.2): TMU2 -> TMU1 -> TMU0 -> FBI. Each TMU's output is the next
 //! one's `c_other`; the last TMU in the chain sees zero.
 
+use core::marker::PhantomData;
+
 use pixelfx::TexelSource;
 use sst1_regs::Rgba;
-use texelfx::{ChainModel, Tmu};
+use texelfx::{ChainModel, TexelModel, Tmu};
 
-/// The TMUs taking part in a triangle, upstream last.
-pub struct Chain<'a> {
-    pub tmus: &'a mut [Tmu],
-    /// How they combine (TMU 0's profile, read once per triangle).
-    pub model: ChainModel,
+/// The TMUs taking part in a triangle, upstream last, run by model `M`.
+pub struct Chain<'a, M> {
+    tmus: &'a mut [Tmu],
+    /// How they combine (TMU 0's profile as `M` reads it, once per triangle).
+    wiring: ChainModel,
+    model: PhantomData<M>,
 }
 
-impl TexelSource for Chain<'_> {
+impl<'a, M: TexelModel> Chain<'a, M> {
+    pub fn new(tmus: &'a mut [Tmu]) -> Self {
+        let wiring = tmus
+            .first()
+            .map_or(ChainModel::Full, |t| M::texel(&t.profile()).chain);
+        Self {
+            tmus,
+            wiring,
+            model: PhantomData,
+        }
+    }
+}
+
+impl<M: TexelModel> TexelSource for Chain<'_, M> {
     #[inline]
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
         match self.tmus {
-            [t0, rest @ ..] if self.model == ChainModel::Box86 => {
-                box86_texel(t0, rest.first_mut(), dx, dy, x, y)
+            [t0, rest @ ..] if self.wiring == ChainModel::Box86 => {
+                box86_texel::<M>(t0, rest.first_mut(), dx, dy, x, y)
             }
             _ => {
                 // Upstream first: the last TMU sees zero, each output feeds the next down.
                 let mut other = Rgba::default();
                 for t in self.tmus.iter_mut().rev() {
-                    other = t.texel(dx, dy, x, y, other);
+                    other = t.texel::<M>(dx, dy, x, y, other);
                 }
                 other
             }
@@ -33,7 +49,7 @@ impl TexelSource for Chain<'_> {
     #[inline]
     fn begin_span(&mut self, dx: i32, dy: i32, len: usize) {
         for t in self.tmus.iter_mut() {
-            t.begin_span(dx, dy, len);
+            t.begin_span::<M>(dx, dy, len);
         }
     }
 }
@@ -47,15 +63,22 @@ const BOX86_COMBINE_MASK: u32 = 0x3fff_f000;
 
 /// [`ChainModel::Box86`]: TMU 0 and, if present, TMU 1 (a third TMU is not read).
 /// Source: 86Box `voodoo_half_triangle` (the choice between the three paths).
-fn box86_texel(t0: &mut Tmu, t1: Option<&mut Tmu>, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
+fn box86_texel<M: TexelModel>(
+    t0: &mut Tmu,
+    t1: Option<&mut Tmu>,
+    dx: i32,
+    dy: i32,
+    x: i32,
+    y: i32,
+) -> Rgba {
     let mode = t0.texture_mode();
     match t1 {
-        None => t0.texel_uncombined(dx, dy, x, y),
-        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => t0.texel_uncombined(dx, dy, x, y),
-        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => t1.texel_uncombined(dx, dy, x, y),
+        None => t0.texel_uncombined::<M>(dx, dy, x, y),
+        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => t0.texel_uncombined::<M>(dx, dy, x, y),
+        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => t1.texel_uncombined::<M>(dx, dy, x, y),
         Some(t1) => {
-            let other = t1.texel_box86_upstream(dx, dy, x, y, mode);
-            t0.texel(dx, dy, x, y, other)
+            let other = t1.texel_box86_upstream::<M>(dx, dy, x, y, mode);
+            t0.texel::<M>(dx, dy, x, y, other)
         }
     }
 }

@@ -13,6 +13,7 @@
 mod bus;
 mod chain;
 mod diagnostics;
+pub mod model;
 pub mod presets;
 pub mod reference;
 
@@ -20,6 +21,7 @@ use serde::{Deserialize, Serialize};
 
 pub use bus::aperture_offset;
 pub use diagnostics::{Diagnostic, Diagnostics};
+pub use model::Model;
 pub use pixelfx::{PixelProfile, Stats};
 pub use reference::{vote, Reference};
 pub use texelfx::{TexelProfile, Tmu};
@@ -75,6 +77,7 @@ pub enum BufferKind {
 }
 
 /// The accuracy profile of the whole board: every disputed behaviour in one place.
+/// `Default` is the hardware model's, [`AccuracyProfile::HARDWARE`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct AccuracyProfile {
@@ -82,6 +85,14 @@ pub struct AccuracyProfile {
     pub pixel: PixelProfile,
     /// Texelfx switches.
     pub texel: TexelProfile,
+}
+
+impl AccuracyProfile {
+    /// The hardware model: our reading of the SST-1 (docs/accuracy.md).
+    pub const HARDWARE: AccuracyProfile = AccuracyProfile {
+        pixel: PixelProfile::HARDWARE,
+        texel: TexelProfile::HARDWARE,
+    };
 }
 
 /// The emulated board.
@@ -92,6 +103,8 @@ pub struct Board {
     /// PCI configuration register `initEnable` (0x40).
     init_enable: u32,
     diagnostics: Diagnostics,
+    /// The model the chips run (their profiles are its profile).
+    model: Model,
 }
 
 impl Board {
@@ -107,6 +120,7 @@ impl Board {
                 .collect(),
             init_enable: 0,
             diagnostics: Diagnostics::default(),
+            model: Model::Hardware,
         }
     }
 
@@ -115,12 +129,25 @@ impl Board {
         self.config
     }
 
-    /// Choose the disputed behaviours.
-    pub fn set_profile(&mut self, profile: AccuracyProfile) {
+    /// Choose the model the chips run (default: [`Model::Hardware`]).
+    pub fn set_model(&mut self, model: Model) {
+        let profile = model.profile();
+        self.model = model;
         self.fbi.set_profile(profile.pixel);
         for t in &mut self.tmus {
             t.set_profile(profile.texel);
         }
+    }
+
+    /// The model the chips run.
+    pub fn model(&self) -> Model {
+        self.model
+    }
+
+    /// Choose the disputed behaviours: the model with this profile
+    /// ([`Model::from_profile`]: a fixed model where the profile is one).
+    pub fn set_profile(&mut self, profile: AccuracyProfile) {
+        self.set_model(Model::from_profile(profile));
     }
 
     /// Force the reference pixel path: every mode register is read at run time for every

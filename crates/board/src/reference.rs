@@ -66,7 +66,7 @@ impl Reference {
     /// Every switch set to what this emulator does (each switch's documentation names
     /// who does what). One line per switch, in the order MAME, DOSBox Staging, 86Box; the
     /// literals name every field, so a new switch cannot be left out.
-    pub fn profile(self) -> AccuracyProfile {
+    pub const fn profile(self) -> AccuracyProfile {
         let r = self;
         AccuracyProfile {
             pixel: PixelProfile {
@@ -232,7 +232,7 @@ impl Reference {
     }
 
     /// The argument that stands for this emulator.
-    fn pick<T>(self, mame: T, dosbox: T, box86: T) -> T {
+    const fn pick<T: Copy>(self, mame: T, dosbox: T, box86: T) -> T {
         match self {
             Reference::Mame => mame,
             Reference::DosboxStaging => dosbox,
@@ -277,9 +277,9 @@ mod tests {
         assert_eq!(m.pixel.blend.arithmetic, BlendArithmetic::Mame);
         assert_eq!(d.pixel.pattern_row, PatternRow::Raster);
         assert_eq!(b.pixel.aux_write, AuxWrite::MaskAndDepthOrAlphaPlanes);
-        // No reference votes: each profile is one emulator's arithmetic.
+        // Each reference widens 2x2-dithered destinations as its own arithmetic does.
         for p in [m, d, b] {
-            assert_ne!(p.pixel.blend.arithmetic, BlendArithmetic::Majority);
+            assert_eq!(p.pixel.blend.dither_2x2, Dither2x2Blend::SameAsArithmetic);
         }
     }
 }

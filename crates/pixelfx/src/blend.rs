@@ -24,25 +24,23 @@ use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 
 /// How the blend is computed: destination widening, dither subtraction, factor scale and
 /// rounding. `Mame`, `Dosbox` and `Exact255` each reproduce one reference's arithmetic as
-/// a whole; `PerProduct` is a hybrid of MAME's and DOSBox Staging's; `Majority` (the
-/// default) is the two-of-three vote of the three references' arithmetics.
+/// a whole; `PerProduct` (the hardware model's) takes each of the three choices as two
+/// of the three references make it.
 ///
 /// | | widening of 565 | dither subtraction (bit 19) | factors, rounding |
 /// |---|---|---|---|
 /// | `PerProduct` | replicate high bits | only with dithering on: `+(15-d)>>1` R/B, `+(15-d)>>2` G | `x+1` and `256-x` (0..=256), each product `>> 8`, then add |
 /// | `Mame` | as `PerProduct` | as `PerProduct` | as `PerProduct`, but the two products are added and the sum shifted `>> 8` once |
-/// | `Dosbox` | zero-fill low bits | as MAME | as MAME |
+/// | `Dosbox` | zero-fill low bits | as MAME | as `PerProduct` |
 /// | `Exact255` | replicate high bits | also with dithering off: 86Box's tables, see below | `x` and `255-x`, each product `/ 255` (truncating), then add |
 ///
 /// MAME's rounding is that of `Mame`: its `alpha_blend` ends in
 /// `rgbaint_t::scale2_add_and_clamp`, which in both the SSE2 build (`rgbsse.h`: the two
 /// 16-bit products summed by one `_mm_madd_epi16`, then `>> 8`) and the portable one
 /// (`rgbgen.h`: `mul`, `add`, then `sra_imm(8)`) rounds the sum once. The MAME goldens
-/// confirm it: with `Mame` (all other switches at their defaults) ours equal
-/// MAME's dump on every pixel of `alpha_blend` (307200 of 307200, against 300709 with
-/// `PerProduct`) and `tex_8bit_formats` (307200, against 270159). `PerProduct`, rounding each
-/// product, is therefore no reference's arithmetic: it is a hybrid that happens to sit
-/// closer to the DOSBox/86Box majority where MAME is the odd one out.
+/// confirm it: with `Mame` ours equal MAME's dump on every pixel of `alpha_blend`
+/// (307200 of 307200, against 300709 with `PerProduct`) and `tex_8bit_formats` (307200,
+/// against 270159).
 ///
 /// 86Box's dither-subtraction tables (`dithersub_rb`, `dithersub_g` and their 2x2 forms)
 /// equal, for every entry: red/blue `0` if the widened value is below 4, else
@@ -53,50 +51,30 @@ use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 /// alpha unclamped (up to 510) in the aux buffer; here it is clamped to 255 in every
 /// variant (INACCURATE for 86Box's `AONE`/`AONE` alpha above 255).
 ///
-/// Default: `Majority`. No two references share one arithmetic, the spec gives only
-/// `Dnew = S*alpha + Dold*beta`, and no capture from a board exists, so which one the chip
-/// has is unknown. The conformance rule asks for the value two of the three references
-/// write, and `Majority` is that rule applied to the blend: it computes the three
-/// arithmetics above (each with its own dither row, see [`DitherRows`]) and keeps the
-/// pixel two of them write. Measured over every dump of both suites (59 traces, the two
-/// `perf_*` included; consensus + majority failures, every other switch at its default):
-/// `Majority` 38 + 125,004; the same vote taken per channel 43 + 122,252 (it can write a
-/// mix of channels that no reference writes); `PerProduct` (the previous default, a
-/// hybrid chosen for being closest to the majority) 41 + 218,758. The per-switch chart is
-/// in `docs/accuracy.md`. Where the references' inputs to the blend differ (diverged
-/// histories, other disputed stages upstream) the vote, taken on our inputs, can miss the
-/// value the references reach from theirs: that is where the 38 consensus pixels are,
-/// listed in `traces/hardware-budget.toml`.
+/// Default (the hardware model): `PerProduct`. The spec gives only
+/// `Dnew = S*alpha + Dold*beta`, no capture from a board exists, and no two references
+/// share one arithmetic; but on each of its three parts two of them agree: the 565
+/// destination is widened by replicating its high bits (MAME, 86Box), factors are
+/// `x + 1` and `256 - x` (MAME, DOSBox Staging), and each product is rounded on its own
+/// (DOSBox Staging's `>> 8`, 86Box's `/ 255`). A chip with two 8x9-bit multipliers, each
+/// truncated, and one adder computes it. Measured over every dump of both suites
+/// (conformance + glide-sdk, consensus + majority misses, every other switch at the
+/// hardware model's): `PerProduct` 36 + 184,161 and 5 + 34,597; `Mame` 25 + 298,349 and
+/// 5 + 49,415. MAME's leaves 11 fewer consensus pixels but 129 k more majority ones;
+/// those 11 are listed in `traces/hardware-budget.toml`. (The per-pixel vote of the
+/// three arithmetics that this project used before, which no chip computes, left
+/// 33 + 121,807 and 5 + 3,197; `--model vote` still votes whole boards.)
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum BlendArithmetic {
-    /// MAME's widening and factors with each product rounded on its own, as DOSBox
-    /// Staging rounds (a hybrid, see above).
+    /// Each part as two of the three references have it (see above).
+    #[default]
     PerProduct,
     /// MAME, as its source and its goldens show: the sum of the two products rounded once.
-    ///
-    /// It clears the two consensus pixels of
-    /// `tmu2_combine` (603, 430 and 431): there MAME's sum (60 * 105 + 255 * 152) >> 8 =
-    /// 176 gives red 22, which DOSBox (its combine inverts TMU 1's alpha) and 86Box (its
-    /// LOD picks another texel) reach by other ways, while rounding each product gives
-    /// 24 + 151 = 175.
     Mame,
     /// DOSBox Staging.
     Dosbox,
     /// 86Box: exact division by 255.
     Exact255,
-    /// Not one arithmetic: the pixel is blended with `Mame`, `Dosbox` and `Exact255`,
-    /// each result is reduced to RGB565 as the dither unit will reduce it (each with its
-    /// own reference's dither row), and the pixel that two of the three write is kept;
-    /// MAME's when all three differ (the conformance README calls MAME the most
-    /// hardware-checked of the three). Never a mix of channels from different references.
-    ///
-    /// This is the pass rule of `traces/conformance/README.md` applied to the blend
-    /// alone: where the three references blend the same inputs, it equals the
-    /// two-of-three majority on every pixel, whichever two agree. No hardware computes
-    /// it; it exists because no capture settles which arithmetic the chip has, and
-    /// every single one leaves tens of thousands of pixels off the majority.
-    #[default]
-    Majority,
 }
 
 /// Which colour the `ASATURATE` source factor scales.
@@ -109,44 +87,52 @@ pub enum SaturateOperand {
     Destination,
 }
 
-/// Which arithmetic blends the pixels written with the 2x2 dither (`fbzMode` bit 8 and
-/// bit 11 set).
+/// How the destination is widened for pixels written with the 2x2 dither (`fbzMode`
+/// bit 8 and bit 11 set).
 ///
-/// Not a hardware behaviour: the blend unit cannot know which matrix dithers its output.
-/// It pairs the arithmetic with [`DitherMatrix2x2`](sst1_dither::DitherMatrix2x2), because
-/// where a 2x2-dithered pixel is blended again (its destination then holds the previous
-/// pass's dithered value) MAME's destinations differ from the other two references' by
-/// MAME's own 2x2 matrix, so the two-of-three majority is formed by DOSBox Staging and
-/// 86Box, whose blends are the classic matrix plus their own arithmetic. MAME's arithmetic
-/// with the classic matrix, which [`BlendArithmetic::PerProduct`] alone gives, is then no
-/// reference's combination and drifts from all three over repeated blends.
-///
-/// Measured with every other switch at its default (`arithmetic = Majority`,
-/// `dither_2x2 = Classic`): the only dump with blended 2x2-dithered pixels is
-/// `stress_random/front`. `Dosbox`: 5 consensus + 3380 majority failures there;
-/// `SameAsArithmetic` (the vote for these pixels too, MAME's part dithered with its own
-/// 2x2 matrix): 6 + 3353. (With the earlier
-/// default `PerProduct`: 12 + 3956 against 121 + 4339.) No other dump changes.
+/// The blend unit sees `fbzMode`, as its dither subtraction must (it reads the matrix
+/// that bit 11 selects). On the one dump whose blended pixels are 2x2-dithered
+/// (`stress_random/front`: 2x2-dithered pixels blended again over 2x2-dithered
+/// destinations) the three references agree on 109 pixels that replication of the high
+/// bits misses and zero fill gives: with `PerProduct` and `ZeroFill` the hardware model
+/// misses 36 consensus pixels over the conformance suite, with `SameAsArithmetic` 145
+/// (184,161 against 184,544 majority). No other dump changes. Zero fill is DOSBox
+/// Staging's widening for every pixel; MAME dithers these pixels with another matrix and
+/// 86Box divides by 255, and both still land on the same pixels, so the evidence is the
+/// agreement, not one emulator's code.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Dither2x2Blend {
-    /// DOSBox Staging's arithmetic ([`BlendArithmetic::Dosbox`]) for these pixels,
-    /// whatever [`BlendProfile::arithmetic`] says: with the default classic matrix this is
-    /// DOSBox Staging's pipeline as a whole.
+    /// The 565 destination is widened by zero fill, whatever [`BlendProfile::arithmetic`]
+    /// widens other pixels by (the hardware model).
     #[default]
-    Dosbox,
-    /// [`BlendProfile::arithmetic`], as for every other pixel (what each reference does
-    /// with its own arithmetic; choose it with `DitherMatrix2x2::Mame` and
-    /// `BlendArithmetic::Mame` to reproduce MAME).
+    ZeroFill,
+    /// [`BlendProfile::arithmetic`]'s widening, as for every other pixel (what each
+    /// reference emulator does).
     SameAsArithmetic,
 }
 
 /// The alpha-blend unit's disputed behaviours.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(default)]
 pub struct BlendProfile {
     pub arithmetic: BlendArithmetic,
     pub saturate: SaturateOperand,
     pub dither_2x2: Dither2x2Blend,
+}
+
+impl BlendProfile {
+    /// The hardware model's blend unit.
+    pub const HARDWARE: BlendProfile = BlendProfile {
+        arithmetic: BlendArithmetic::PerProduct,
+        saturate: SaturateOperand::Source,
+        dither_2x2: Dither2x2Blend::ZeroFill,
+    };
+}
+
+impl Default for BlendProfile {
+    fn default() -> Self {
+        Self::HARDWARE
+    }
 }
 
 /// The per-pixel inputs of the blend unit.
@@ -165,33 +151,6 @@ pub struct BlendInput {
     /// 2x2), whether or not bit 8 enables dithering: `Dither::matrix_value` with
     /// `Dither4x4` or `Dither2x2`. Used only for dither subtraction (bit 19).
     pub dither_value: u8,
-    /// The dither-matrix entry each reference uses at the pixel (see [`DitherRows`]).
-    /// Read only by [`BlendArithmetic::Majority`], which blends and reduces each
-    /// reference's way; the pipeline leaves it zero for the other arithmetics.
-    pub dither_rows: DitherRows,
-}
-
-/// The dither-matrix entry each reference uses at a pixel, for its dither subtraction and
-/// its reduction to RGB565. They differ in the row (`PatternRow`: MAME and 86Box index
-/// the matrices with the frame-buffer row after the Y-origin flip, DOSBox Staging with
-/// the raster row before it) and in the 2x2 matrix (`DitherMatrix2x2`: MAME's own,
-/// the classic one for the other two).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct DitherRows {
-    pub mame: u8,
-    pub dosbox: u8,
-    pub box86: u8,
-}
-
-impl DitherRows {
-    /// The same entry for all three (no Y flip, no 2x2 dither).
-    pub const fn all(entry: u8) -> Self {
-        Self {
-            mame: entry,
-            dosbox: entry,
-            box86: entry,
-        }
-    }
 }
 
 /// Scale of the blend factors: `(one, plus)`: a factor `x` is `x + plus`, `1 - x` is
@@ -201,8 +160,6 @@ fn scale(arithmetic: BlendArithmetic) -> (i32, i32) {
     match arithmetic {
         BlendArithmetic::PerProduct | BlendArithmetic::Mame | BlendArithmetic::Dosbox => (256, 1),
         BlendArithmetic::Exact255 => (255, 0),
-        // Never used: `Majority` blends with the three others.
-        BlendArithmetic::Majority => (256, 1),
     }
 }
 
@@ -256,8 +213,7 @@ impl Channel {
         let sv = if self.saturate_dst { d } else { s };
         let (ts, td) = match self.arith {
             // Arithmetic shift: floor, as the references' signed shifts.
-            // (`Majority` never reaches here: `alpha_blend` resolves it first.)
-            BlendArithmetic::PerProduct | BlendArithmetic::Dosbox | BlendArithmetic::Majority => {
+            BlendArithmetic::PerProduct | BlendArithmetic::Dosbox => {
                 ((sv * fs) >> 8, (d * fd) >> 8)
             }
             // Source: MAME `scale2_add_and_clamp` (rgbsse.h, rgbgen.h).
@@ -305,84 +261,18 @@ pub fn alpha_blend(
     if !alpha_mode.alpha_blend_enable() {
         return src;
     }
-    let arith = if fbz_mode.enable_dithering()
+    let zero_fill = fbz_mode.enable_dithering()
         && fbz_mode.dither_2x2()
-        && profile.dither_2x2 == Dither2x2Blend::Dosbox
-    {
-        BlendArithmetic::Dosbox
-    } else {
-        profile.arithmetic
-    };
-    let (rgb, da) = if arith == BlendArithmetic::Majority {
-        majority_rgb(alpha_mode, fbz_mode, input, profile)
-    } else {
-        blend_rgb(
-            arith,
-            alpha_mode,
-            fbz_mode,
-            input,
-            input.dither_value,
-            profile,
-        )
-    };
+        && profile.dither_2x2 == Dither2x2Blend::ZeroFill;
+    let (rgb, da) = blend_rgb(
+        profile.arithmetic,
+        zero_fill,
+        alpha_mode,
+        fbz_mode,
+        input,
+        profile,
+    );
     finish(rgb, da, alpha_mode, input)
-}
-
-/// [`BlendArithmetic::Majority`]: the RGB of the pixel two of the three references'
-/// arithmetics write (MAME's when all three differ), and the destination alpha.
-#[inline(always)]
-fn majority_rgb(
-    alpha_mode: AlphaMode,
-    fbz_mode: FbzMode,
-    input: &BlendInput,
-    profile: BlendProfile,
-) -> ([i32; 3], i32) {
-    // Each reference blends and dithers with its own matrix entry (`DitherRows`).
-    let rows = input.dither_rows;
-    let blend = |arith, dv: u8| blend_rgb(arith, alpha_mode, fbz_mode, input, dv, profile);
-    let dither = fbz_mode.enable_dithering();
-    // (`[T; 3]::map` is not inlined here: the channels are written out.)
-    let reduced = |v: [i32; 3], e: u8| {
-        [
-            reduce(v[0], 5, dither, e),
-            reduce(v[1], 6, dither, e),
-            reduce(v[2], 5, dither, e),
-        ]
-    };
-    let (d, da) = blend(BlendArithmetic::Dosbox, rows.dosbox);
-    let (b, _) = blend(BlendArithmetic::Exact255, rows.box86);
-    let (qd, qb) = (reduced(d, rows.dosbox), reduced(b, rows.box86));
-    let ours = input.dither_value;
-    let rgb = if qd == qb && ours == rows.box86 {
-        // DOSBox Staging and 86Box agree, and this pipeline dithers with 86Box's
-        // entry: MAME's arithmetic cannot change the outcome (the common case, so MAME's
-        // is computed last).
-        b
-    } else {
-        let (m, _) = blend(BlendArithmetic::Mame, rows.mame);
-        let qm = reduced(m, rows.mame);
-        let target = if qm == qd || qm == qb {
-            qm
-        } else if qd == qb {
-            qd
-        } else {
-            // All three differ: MAME's (the reference the conformance README calls the
-            // most hardware-checked).
-            return (m, da);
-        };
-        // The 8-bit pixel that this pipeline's dither stage writes as `target`:
-        // MAME's, else 86Box's, else DOSBox Staging's (whose dither row may differ).
-        if reduced(m, ours) == target {
-            m
-        } else if reduced(b, ours) == target {
-            b
-        } else if reduced(d, ours) == target {
-            d
-        } else {
-            m
-        }
-    };
-    (rgb, da)
 }
 
 /// The blended pixel from its RGB and the destination alpha: the alpha channel has only
@@ -408,34 +298,24 @@ fn finish(rgb: [i32; 3], da: i32, alpha_mode: AlphaMode, input: &BlendInput) -> 
     }
 }
 
-/// An 8-bit channel (0..=255) reduced to `bits` (5 or 6) as the dither unit reduces it:
-/// [`sst1_dither::dither_rb`] / [`sst1_dither::dither_g`] with matrix entry `dv`, or
-/// truncation with dithering off.
-#[inline(always)]
-fn reduce(v: i32, bits: u32, dither: bool, dv: u8) -> i32 {
-    let v = v as u8;
-    i32::from(match (dither, bits) {
-        (false, _) => v >> (8 - bits),
-        (true, 5) => sst1_dither::dither_rb(v, dv),
-        (true, _) => sst1_dither::dither_g(v, dv),
-    })
-}
-
-/// The RGB blend under one (single) arithmetic, and the destination alpha it used.
+/// The RGB blend under one arithmetic, and the destination alpha it used. `zero_fill`:
+/// widen the destination by zero fill whatever the arithmetic says
+/// ([`Dither2x2Blend::ZeroFill`]).
 #[inline(always)]
 fn blend_rgb(
     arith: BlendArithmetic,
+    zero_fill: bool,
     alpha_mode: AlphaMode,
     fbz_mode: FbzMode,
     input: &BlendInput,
-    dither_value: u8,
     profile: BlendProfile,
 ) -> ([i32; 3], i32) {
     let src = input.src;
     let sc = scale(arith);
 
     // Destination colour and alpha.
-    let mut d = widen(input.dst_rgb565, arith != BlendArithmetic::Dosbox);
+    let replicate = arith != BlendArithmetic::Dosbox && !zero_fill;
+    let mut d = widen(input.dst_rgb565, replicate);
     let da = match (fbz_mode.enable_alpha_planes(), input.dst_aux) {
         (true, Some(aux)) if arith == BlendArithmetic::Exact255 => (aux & 0xff) as i32,
         (true, Some(aux)) => aux as i32,
@@ -445,7 +325,7 @@ fn blend_rgb(
     // Dither subtraction: despite the name, MAME and DOSBox Staging raise the widened
     // destination by the part of the dither offset its truncation lost.
     if fbz_mode.dither_subtract() {
-        let dv = dither_value as i32;
+        let dv = input.dither_value as i32;
         match arith {
             BlendArithmetic::PerProduct | BlendArithmetic::Mame | BlendArithmetic::Dosbox
                 if fbz_mode.enable_dithering() =>
@@ -498,7 +378,7 @@ fn blend_rgb(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use BlendArithmetic::{Dosbox, Exact255, Majority, Mame, PerProduct};
+    use BlendArithmetic::{Dosbox, Exact255, Mame, PerProduct};
 
     const SRC: Rgba = Rgba {
         r: 200,
@@ -529,7 +409,6 @@ mod tests {
             dst_rgb565: DST,
             dst_aux: Some(0x30),
             dither_value: 3,
-            dither_rows: DitherRows::all(3),
         }
     }
 
@@ -617,118 +496,6 @@ mod tests {
             blend(PerProduct, 1, 5, DITHER | DITHER_SUB, &input()),
             [181, 140, 73]
         );
-    }
-
-    /// Over every factor pair, dithering off and on, with and without dither
-    /// subtraction, and every matrix entry: `Majority` writes the pixel that two of
-    /// `Mame`, `Dosbox` and `Exact255` write, wherever two agree, and MAME's otherwise.
-    #[test]
-    fn majority_writes_the_two_of_three_pixel() {
-        let mut cases = [0; 3];
-        for fbz in [0, DITHER, DITHER | DITHER_SUB] {
-            for dv in 0..16u8 {
-                let i = BlendInput {
-                    dither_value: dv,
-                    dither_rows: DitherRows::all(dv),
-                    ..input()
-                };
-                let dither = fbz & DITHER != 0;
-                let q = |v: [u8; 3]| {
-                    [(v[0], 5), (v[1], 6), (v[2], 5)]
-                        .map(|(x, bits)| reduce(x as i32, bits, dither, dv))
-                };
-                for src in 0..16 {
-                    for dst in 0..16 {
-                        let [m, d, b, v] = [Mame, Dosbox, Exact255, Majority]
-                            .map(|a| q(blend(a, src, dst, fbz, &i)));
-                        let (want, case) = if m == d || m == b {
-                            (m, 0)
-                        } else if d == b {
-                            (d, 1)
-                        } else {
-                            (m, 2)
-                        };
-                        cases[case] += 1;
-                        assert_eq!(v, want, "{src} {dst} fbz {fbz:x} d {dv}");
-                    }
-                }
-            }
-        }
-        // Each of the three outcomes is exercised.
-        assert!(cases.iter().all(|&n| n > 0), "{cases:?}");
-    }
-
-    /// With a different dither entry per reference (another row for DOSBox Staging,
-    /// MAME's own 2x2 matrix), each reference's pixel is reduced with its own entry, and
-    /// the written pixel is one that this pipeline's entry reduces to the majority.
-    #[test]
-    fn majority_reduces_each_reference_with_its_own_entry() {
-        let fbz = DITHER | DITHER_SUB;
-        for dv in 0..16u8 {
-            let rows = DitherRows {
-                mame: dv,
-                dosbox: (dv + 5) % 16,
-                box86: (dv + 9) % 16,
-            };
-            let i = BlendInput {
-                dither_value: dv,
-                dither_rows: rows,
-                ..input()
-            };
-            let q = |v: [u8; 3], e: u8| {
-                [(v[0], 5), (v[1], 6), (v[2], 5)].map(|(x, bits)| reduce(x as i32, bits, true, e))
-            };
-            // Each single arithmetic with the reference's own entry.
-            let own = |a, e: u8| {
-                let one = BlendInput {
-                    dither_value: e,
-                    ..i
-                };
-                blend(a, 1, 5, fbz, &one)
-            };
-            let (m, d, b) = (
-                own(Mame, rows.mame),
-                own(Dosbox, rows.dosbox),
-                own(Exact255, rows.box86),
-            );
-            let (qm, qd, qb) = (q(m, rows.mame), q(d, rows.dosbox), q(b, rows.box86));
-            let want = if qm == qd || qm == qb {
-                qm
-            } else if qd == qb {
-                qd
-            } else {
-                qm
-            };
-            let v = blend(Majority, 1, 5, fbz, &i);
-            if [m, b, d].iter().any(|&x| q(x, dv) == want) {
-                assert_eq!(q(v, dv), want, "entry {dv}");
-            } else {
-                assert_eq!(v, m, "entry {dv}");
-            }
-        }
-    }
-
-    /// MAME and 86Box agree on red, DOSBox and 86Box on green: no two agree on the
-    /// pixel, so MAME's pixel is written (not a mix of channels).
-    #[test]
-    fn majority_never_mixes_channels() {
-        // ASRC_ALPHA / AOMSRC_ALPHA with the source alpha 0x30 over 0x8410, undithered:
-        // MAME (18, 31, 14), DOSBox (17, 30, 14), 86Box (18, 30, 14) in 565 fields.
-        let i = BlendInput {
-            src: Rgba {
-                r: 200,
-                g: 100,
-                b: 50,
-                a: 0x30,
-            },
-            dst_rgb565: 0x8410,
-            ..input()
-        };
-        let q = |v: [u8; 3]| [v[0] >> 3, v[1] >> 2, v[2] >> 3];
-        assert_eq!(q(blend(Mame, 1, 5, 0, &i)), [18, 31, 14]);
-        assert_eq!(q(blend(Dosbox, 1, 5, 0, &i)), [17, 30, 14]);
-        assert_eq!(q(blend(Exact255, 1, 5, 0, &i)), [18, 30, 14]);
-        assert_eq!(q(blend(Majority, 1, 5, 0, &i)), [18, 31, 14]);
     }
 
     #[test]
@@ -819,9 +586,10 @@ mod tests {
     fn dither_2x2_pairing() {
         let i = input();
         let d2 = DITHER | 1 << 11;
-        // Default: 2x2-dithered pixels blend as DOSBox Staging, whatever `arithmetic` says.
+        // Default: 2x2-dithered destinations are widened by zero fill; with
+        // `PerProduct` that is DOSBox Staging's arithmetic.
         assert_eq!(blend(PerProduct, 1, 5, d2, &i), [175, 137, 68]);
-        assert_eq!(blend(Exact255, 1, 5, d2, &i), [175, 137, 68]);
+        assert_eq!(blend(Dosbox, 1, 5, d2, &i), [175, 137, 68]);
         // Bit 11 without dithering (bit 8) is not 2x2 dithering.
         assert_eq!(blend(PerProduct, 1, 5, 1 << 11, &i), [178, 138, 69]);
         let same = BlendProfile {

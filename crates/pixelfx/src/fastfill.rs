@@ -10,12 +10,14 @@
 use sst1_regs::{addr, Rgba};
 
 use crate::fbi::Fbi;
+use crate::model::PixelModel;
 use crate::pipeline::DrawState;
 use crate::profile::FastfillDither;
 
 impl Fbi {
-    /// Execute the FASTFILL command.
-    pub fn fastfill(&mut self) {
+    /// Execute the FASTFILL command as model `M` ([`crate::model`]; the caller guarantees
+    /// that the profile this FBI holds is `M`'s).
+    pub fn fastfill<M: PixelModel>(&mut self) {
         self.stats.fastfills += 1;
         let mode = self.fbz_mode();
         let cl = self.reg(addr::CLIP_LEFT_RIGHT);
@@ -35,12 +37,12 @@ impl Fbi {
         if dest.is_none() && aux.is_none() {
             return;
         }
-        let st = DrawState::capture(self, dest.unwrap_or(0));
+        let st = DrawState::capture::<M>(self, dest.unwrap_or(0));
         let colour = Rgba::from_argb(self.reg(addr::COLOR1));
         let depth = self.reg(addr::ZA_COLOR) as u16;
         // The 4x4 cell of dithered colours, indexed [y & 3][x & 3].
         let mut cell = [[0u16; 4]; 4];
-        let dither = match self.profile().fastfill_dither {
+        let dither = match M::pixel(&self.profile()).fastfill_dither {
             FastfillDither::Dithered => st.dither,
             FastfillDither::Truncated => sst1_dither::DitherKind::Off,
         };

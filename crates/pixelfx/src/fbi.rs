@@ -10,6 +10,7 @@ use sst1_fog::FogTable;
 use sst1_regs::{addr, ColorBuffer, FbiInit1, FbiInit2, FbiInit3, FbzMode, VideoDimensions};
 
 use crate::fb::FrameBuffer;
+use crate::model::PixelModel;
 use crate::params::TriangleParams;
 use crate::profile::{GraphicsReset, PixelProfile};
 use crate::stats::Stats;
@@ -39,7 +40,9 @@ pub struct Fbi {
     pub fog_table: FogTable,
     /// Statistics counters.
     pub stats: Stats,
-    /// The disputed-behaviour switches.
+    /// The disputed-behaviour switches held at run time: what the generic model
+    /// ([`crate::model::RuntimeProfile`]) reads, and the fixed models' own profile (the
+    /// board keeps the two in step).
     profile: PixelProfile,
     /// Dither tables for the profile's 2x2 matrix.
     pub(crate) dither: Dither,
@@ -106,12 +109,14 @@ impl Fbi {
     }
 
     /// A register write. `offset` is a normal-map byte offset; the board has applied
-    /// chip select and the `initEnable` gate for `fbiInit*`.
-    pub fn write_reg(&mut self, offset: u32, value: u32) -> Command {
+    /// chip select and the `initEnable` gate for `fbiInit*`. `M` is the model of the chip
+    /// ([`crate::model`]); the caller guarantees that the profile this FBI holds is `M`'s.
+    pub fn write_reg<M: PixelModel>(&mut self, offset: u32, value: u32) -> Command {
         let idx = addr::index(offset);
+        let profile = M::pixel(&self.profile);
         if self
             .params
-            .write(offset & 0x3fc, value, self.profile.float_overflow)
+            .write(offset & 0x3fc, value, profile.float_overflow)
         {
             return Command::None;
         }
@@ -140,7 +145,7 @@ impl Fbi {
                 // Bit 1: FBI graphics reset clears the counters (MAME, DOSBox Staging).
                 if value & 2 != 0 {
                     self.stats.clear_hardware();
-                    if self.profile.graphics_reset == GraphicsReset::ResetsBuffers {
+                    if profile.graphics_reset == GraphicsReset::ResetsBuffers {
                         // Source: 86Box `voodoo_writel`, FBIINIT0_GRAPHICS_RESET.
                         self.fb.front = 0;
                         self.fb.back = 1;
@@ -209,16 +214,6 @@ impl Fbi {
             ColorBuffer::Front => self.fb.rgb_base(self.fb.front),
             ColorBuffer::Back => self.fb.rgb_base(self.fb.back),
             _ => None,
-        }
-    }
-
-    /// The row the dither and stipple patterns use for raster row `y` landing on frame-buffer
-    /// row `scry`.
-    #[inline]
-    pub fn pattern_row(&self, y: i32, scry: i32) -> i32 {
-        match self.profile.pattern_row {
-            crate::profile::PatternRow::Screen => scry,
-            crate::profile::PatternRow::Raster => y,
         }
     }
 

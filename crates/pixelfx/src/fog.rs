@@ -85,7 +85,7 @@ pub enum FogBothSources {
 
 /// The fog unit's disputed behaviours. `Default` follows two of the three references
 /// (or all three, against the spec, for [`FogBothSources`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(default)]
 pub struct FogProfile {
     pub difference: FogDifference,
@@ -93,6 +93,23 @@ pub struct FogProfile {
     pub constant_mult: FogConstantMult,
     pub table_depth: FogTableDepth,
     pub both_sources: FogBothSources,
+}
+
+impl FogProfile {
+    /// The hardware model's fog unit (each switch's `#[default]` variant).
+    pub const HARDWARE: FogProfile = FogProfile {
+        difference: FogDifference::Signed,
+        iterated_alpha: FogIteratedAlpha::Clamped,
+        constant_mult: FogConstantMult::FogColor,
+        table_depth: FogTableDepth::Wfloat,
+        both_sources: FogBothSources::IteratedW,
+    };
+}
+
+impl Default for FogProfile {
+    fn default() -> Self {
+        Self::HARDWARE
+    }
 }
 
 /// The per-pixel inputs of the fog unit.

@@ -12,6 +12,7 @@ use sst1_regs::{addr, ColorBuffer, LfbMode, LfbReadBuffer, Rgba};
 
 use crate::fbi::Fbi;
 use crate::iter::Iterated;
+use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::{LfbOrdering, LfbWordSwap};
 use crate::stats::Kill;
@@ -138,9 +139,11 @@ impl Fbi {
         LfbMode(self.reg(addr::LFB_MODE))
     }
 
-    /// A 32-bit write into the LFB region; `offset` is relative to 0x400000.
-    pub fn lfb_write(&mut self, offset: u32, data: u32) {
-        let profile = self.profile();
+    /// A 32-bit write into the LFB region; `offset` is relative to 0x400000. `M` is the
+    /// model of the chip ([`crate::model`]); the caller guarantees that the profile this
+    /// FBI holds is `M`'s.
+    pub fn lfb_write<M: PixelModel>(&mut self, offset: u32, data: u32) {
+        let profile = M::pixel(&self.profile());
         let mut mode = self.lfb_mode();
         let mut data = data;
         let ordering = profile.lfb_ordering == LfbOrdering::Applied;
@@ -182,7 +185,7 @@ impl Fbi {
         let za = self.reg(addr::ZA_COLOR);
         let fbz = self.fbz_mode();
         if mode.enable_pixel_pipeline() {
-            let st = DrawState::capture(self, dest);
+            let st = DrawState::capture::<M>(self, dest);
             // UNVERIFIED: the pipeline path flips with fbzMode's Y origin (DOSBox Staging).
             let scry = self.screen_y(y, fbz.y_origin() && ordering);
             let color1 = Rgba::from_argb(self.reg(addr::COLOR1));
@@ -209,8 +212,8 @@ impl Fbi {
                     w: (depth as i64) << 14,
                 };
                 let mut stipple = st.stipple;
-                let prow = self.pattern_row(y, scry);
-                let r = self.shade_pixel(
+                let prow = profile.pattern_row.row(y, scry);
+                let r = self.shade_pixel::<M>(
                     &st,
                     x,
                     prow,
@@ -224,13 +227,13 @@ impl Fbi {
             }
         } else {
             let scry = self.screen_y(y, mode.y_origin());
-            let dither = DrawState::capture(self, dest).dither;
+            let dither = DrawState::capture::<M>(self, dest).dither;
             let aux = self.fb.aux_base();
             for (i, p) in pixels.iter().take(count).enumerate() {
                 let x = x0 + i as i32;
                 if let Some([r, g, b]) = p.rgb {
                     if let Some(idx) = self.fb.index(dest, x, scry) {
-                        let prow = self.pattern_row(y, scry);
+                        let prow = profile.pattern_row.row(y, scry);
                         self.fb.ram[idx] =
                             self.dither.rgb565(dither, x as u32, prow as u32, r, g, b);
                     }

@@ -14,6 +14,7 @@ pub mod fbi;
 pub mod fog;
 pub mod iter;
 pub mod lfb;
+pub mod model;
 pub mod params;
 pub mod pipeline;
 pub mod profile;
@@ -24,6 +25,7 @@ pub mod stats;
 pub mod stipple;
 
 pub use fbi::{Command, Fbi};
+pub use model::{PixelModel, RuntimeProfile, Walker};
 pub use profile::PixelProfile;
 pub use raster::{NoTexture, TexelSource};
 pub use stats::{Kill, Stats};

@@ -18,6 +18,7 @@ use sst1_regs::{AlphaMode, FbzColorPath, FbzMode, FogMode, Rgba};
 use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
 use crate::iter::{wfloat, Iterated};
+use crate::model::PixelModel;
 use crate::profile::{AuxWrite, ClipRightEdge, OverrideTexel, ZAlphaByte};
 use crate::specialize::{value, Known, LIVE};
 use crate::stats::Kill;
@@ -53,14 +54,16 @@ pub struct DrawState {
 }
 
 impl DrawState {
-    /// Snapshot the registers of `fbi` for drawing into colour buffer `dest`.
-    pub fn capture(fbi: &Fbi, dest: usize) -> Self {
+    /// Snapshot the registers of `fbi` for drawing into colour buffer `dest`, as model
+    /// `M` reads them.
+    pub fn capture<M: PixelModel>(fbi: &Fbi, dest: usize) -> Self {
         use sst1_regs::addr;
+        let profile = M::pixel(&fbi.profile());
         let mode = fbi.fbz_mode();
         let cl = fbi.reg(addr::CLIP_LEFT_RIGHT);
         let cy = fbi.reg(addr::CLIP_LOW_Y_HIGH_Y);
         let mut right = (cl & 0x3ff) as i32;
-        if fbi.profile().clip_right == ClipRightEdge::DropLastColumn {
+        if profile.clip_right == ClipRightEdge::DropLastColumn {
             right -= 1;
         }
         let dither_matrix = if mode.dither_2x2() {
@@ -74,7 +77,7 @@ impl DrawState {
             DitherKind::Off
         };
         let color_path = FbzColorPath(fbi.reg(addr::FBZ_COLOR_PATH));
-        let fetch_texel = match fbi.profile().override_texel {
+        let fetch_texel = match profile.override_texel {
             OverrideTexel::Texel => true,
             OverrideTexel::ZeroWhenUnused => color_path::texel_feeds_equation(color_path),
         };
@@ -118,7 +121,7 @@ impl Fbi {
     /// Run one pixel through the pipeline, reading every mode register at run time (the
     /// reference path). See [`Fbi::shade`] for the arguments.
     #[inline]
-    pub(crate) fn shade_pixel(
+    pub(crate) fn shade_pixel<M: PixelModel>(
         &mut self,
         st: &DrawState,
         x: i32,
@@ -129,7 +132,7 @@ impl Fbi {
         stipple_state: &mut u32,
         texel: impl FnOnce() -> Rgba,
     ) -> Result<(), Kill> {
-        self.shade::<LIVE, LIVE, LIVE, LIVE>(st, x, prow, scry, it, source, stipple_state, texel)
+        self.shade::<M, LIVE, LIVE, LIVE, LIVE>(st, x, prow, scry, it, source, stipple_state, texel)
     }
 
     /// Run one pixel through the pipeline. `x` is the screen column, `y` the raster row
@@ -138,13 +141,19 @@ impl Fbi {
     /// `prow` is the row the dither and stipple patterns are indexed with (see
     /// [`crate::profile::PatternRow`]).
     ///
-    /// `CP`, `AM`, `FM` and `ZM` are the bits of `fbzColorPath`, `alphaMode`, `fogMode`
+    /// `M` is the model of the chip ([`crate::model`]). `CP`, `AM`, `FM` and `ZM` are the bits of `fbzColorPath`, `alphaMode`, `fogMode`
     /// and `fbzMode` known at compile time ([`LIVE`]: none; see [`crate::specialize`]);
     /// the caller guarantees that they equal `st`'s. The stages are the same code either
     /// way: known bits only let the compiler fold the bit tests and drop the stages that
     /// are off.
     #[inline(always)]
-    pub(crate) fn shade<const CP: Known, const AM: Known, const FM: Known, const ZM: Known>(
+    pub(crate) fn shade<
+        M: PixelModel,
+        const CP: Known,
+        const AM: Known,
+        const FM: Known,
+        const ZM: Known,
+    >(
         &mut self,
         st: &DrawState,
         x: i32,
@@ -159,7 +168,7 @@ impl Fbi {
         let color_path = FbzColorPath(value(CP, st.color_path.0));
         let am = AlphaMode(value(AM, st.alpha_mode.0));
         let fog_mode = FogMode(value(FM, st.fog_mode.0));
-        let profile = self.profile();
+        let profile = M::pixel(&self.profile());
 
         // --- stipple ---
         if mode.enable_stipple()
@@ -282,20 +291,6 @@ impl Fbi {
                 dither_value: self
                     .dither
                     .matrix_value(st.dither_matrix, x as u32, prow as u32),
-                // Only the blend vote reads the references' own entries.
-                dither_rows: if profile.blend.arithmetic == blend::BlendArithmetic::Majority {
-                    use sst1_dither::{matrix_entry, DitherMatrix2x2::*};
-                    let k = st.dither_matrix;
-                    // `screen_y` is its own inverse on the low bits the matrix uses.
-                    let raster = self.screen_y(scry, mode.y_origin()) as u32;
-                    blend::DitherRows {
-                        mame: matrix_entry(k, Mame, x as u32, scry as u32),
-                        dosbox: matrix_entry(k, Classic, x as u32, raster),
-                        box86: matrix_entry(k, Classic, x as u32, scry as u32),
-                    }
-                } else {
-                    blend::DitherRows::default()
-                },
             };
             blend::alpha_blend(am, mode, &input, profile.blend)
         } else {

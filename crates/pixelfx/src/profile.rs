@@ -43,6 +43,18 @@ pub enum PatternRow {
     Raster,
 }
 
+impl PatternRow {
+    /// The row the dither and stipple patterns use for raster row `y` landing on
+    /// frame-buffer row `scry`.
+    #[inline(always)]
+    pub const fn row(self, y: i32, scry: i32) -> i32 {
+        match self {
+            PatternRow::Screen => scry,
+            PatternRow::Raster => y,
+        }
+    }
+}
+
 /// Whether `lfbMode` bit 11 (word swap on writes) applies to the 32-bit colour formats.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum LfbWordSwap {
@@ -143,7 +155,7 @@ pub enum GraphicsReset {
 }
 
 /// Every disputed behaviour of the Pixelfx, chosen in one place.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(default)]
 pub struct PixelProfile {
     pub edge_rounding: EdgeRounding,
@@ -166,4 +178,82 @@ pub struct PixelProfile {
     pub graphics_reset: GraphicsReset,
     pub fog: crate::fog::FogProfile,
     pub blend: crate::blend::BlendProfile,
+}
+
+impl PixelProfile {
+    /// The hardware model: our reading of the SST-1 for every disputed behaviour (each
+    /// switch's `#[default]` variant; docs/accuracy.md gives the evidence).
+    pub const HARDWARE: PixelProfile = PixelProfile {
+        edge_rounding: EdgeRounding::FloorHalfDown,
+        wfloat: WFloatEdges::Dosbox,
+        clip_right: ClipRightEdge::Exclusive,
+        aux_write: AuxWrite::MaskOnly,
+        pattern_row: PatternRow::Screen,
+        lfb_word_swap: LfbWordSwap::SpecIgnoredFor32Bit,
+        lfb_ordering: LfbOrdering::Applied,
+        float_overflow: FloatOverflow::Wrap,
+        subpixel_z: SubpixelZ::Wrap32,
+        param_origin: ParamOrigin::VertexPixel,
+        alpha_test_input: AlphaTestInput::Combined,
+        dither_2x2: DitherMatrix2x2::Classic,
+        fastfill_dither: FastfillDither::Dithered,
+        override_texel: OverrideTexel::Texel,
+        z_alpha: ZAlphaByte::High,
+        stipple_rotate: StippleRotate::PerScanline,
+        iterator_clamp: IteratorClamp::PseudoClamp,
+        graphics_reset: GraphicsReset::KeepsBuffers,
+        fog: crate::fog::FogProfile::HARDWARE,
+        blend: crate::blend::BlendProfile::HARDWARE,
+    };
+}
+
+impl Default for PixelProfile {
+    fn default() -> Self {
+        Self::HARDWARE
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The hardware model's profile is every switch's `#[default]` variant, so that the
+    /// enums' own documentation of the default and the model cannot disagree.
+    #[test]
+    fn hardware_is_every_switch_default() {
+        let h = PixelProfile::HARDWARE;
+        let d = PixelProfile {
+            edge_rounding: Default::default(),
+            wfloat: Default::default(),
+            clip_right: Default::default(),
+            aux_write: Default::default(),
+            pattern_row: Default::default(),
+            lfb_word_swap: Default::default(),
+            lfb_ordering: Default::default(),
+            float_overflow: Default::default(),
+            subpixel_z: Default::default(),
+            param_origin: Default::default(),
+            alpha_test_input: Default::default(),
+            dither_2x2: Default::default(),
+            fastfill_dither: Default::default(),
+            override_texel: Default::default(),
+            z_alpha: Default::default(),
+            stipple_rotate: Default::default(),
+            iterator_clamp: Default::default(),
+            graphics_reset: Default::default(),
+            fog: crate::fog::FogProfile {
+                difference: Default::default(),
+                iterated_alpha: Default::default(),
+                constant_mult: Default::default(),
+                table_depth: Default::default(),
+                both_sources: Default::default(),
+            },
+            blend: crate::blend::BlendProfile {
+                arithmetic: Default::default(),
+                saturate: Default::default(),
+                dither_2x2: Default::default(),
+            },
+        };
+        assert_eq!(h, d);
+    }
 }

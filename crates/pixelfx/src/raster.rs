@@ -5,9 +5,10 @@ use sst1_regs::{FbzMode, Rgba};
 
 use crate::fbi::Fbi;
 use crate::iter::Iterated;
+use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::StippleRotate;
-use crate::specialize::{self, value, Known, RasterKey, LIVE};
+use crate::specialize::{value, Known, RasterKey, LIVE};
 use crate::{setup, stipple};
 
 /// What the TMU chain gives the FBI for one pixel.
@@ -40,18 +41,22 @@ impl Fbi {
     ///
     /// Unless [`Fbi::set_reference`] forced the reference path, a walker specialised for
     /// the triangle's mode registers is used when [`crate::specialize`] has one.
-    pub fn draw_triangle<T: TexelSource>(&mut self, tex: &mut T) {
+    ///
+    /// `M` is the model of the chip ([`crate::model`]); the caller guarantees that the
+    /// profile this FBI holds is `M`'s.
+    pub fn draw_triangle<M: PixelModel, T: TexelSource>(&mut self, tex: &mut T) {
         self.stats.triangles += 1;
         let mode = self.fbz_mode();
         let Some(dest) = self.colour_buffer(mode.draw_buffer()) else {
             return;
         };
-        let st = DrawState::capture(self, dest);
-        let walk = if self.reference {
-            Fbi::walk::<T, LIVE, LIVE, LIVE, LIVE>
+        let st = DrawState::capture::<M>(self, dest);
+        let specialised = if self.reference {
+            None
         } else {
-            specialize::select::<T>(RasterKey::of_state(&st))
+            M::specialised::<T>(RasterKey::of_state(&st))
         };
+        let walk = specialised.unwrap_or(Fbi::walk::<M, T, LIVE, LIVE, LIVE, LIVE>);
         walk(self, &st, tex);
     }
 
@@ -73,6 +78,7 @@ impl Fbi {
     /// at compile time folded in (see [`crate::specialize::Known`]); the rest is read
     /// from `st`. The caller guarantees that the known bits equal `st`'s.
     pub(crate) fn walk<
+        M: PixelModel,
         T: TexelSource,
         const CP: Known,
         const AM: Known,
@@ -92,7 +98,7 @@ impl Fbi {
         );
         let mode = FbzMode(value(ZM, st.mode.0));
         let flip = mode.y_origin();
-        let profile = self.profile();
+        let profile = M::pixel(&self.profile());
         let origin = profile.param_origin;
         let (ax, ay) = (origin.pixel(self.params.ax), origin.pixel(self.params.ay));
         let params = self.params;
@@ -122,7 +128,7 @@ impl Fbi {
             let dy = span.y - ay;
             let mut it = Iterated::at(&params, start - ax, dy);
             let mut stipple = st.stipple;
-            let prow = self.pattern_row(span.y, scry);
+            let prow = profile.pattern_row.row(span.y, scry);
             tex.begin_span(start - ax, dy, (stop - start) as usize);
             if per_triangle {
                 // Each pixel's stepped copy, in walk order (right to left when
@@ -141,7 +147,7 @@ impl Fbi {
                 if per_triangle {
                     stipple = row_stipple[(x - start) as usize];
                 }
-                let r = self.shade::<CP, AM, FM, ZM>(
+                let r = self.shade::<M, CP, AM, FM, ZM>(
                     st,
                     x,
                     prow,

@@ -9,8 +9,9 @@
 //! knows a register's bits is the same code after constant folding: bit tests vanish,
 //! the combine units' input selections become fixed and disabled stages are dropped.
 //!
-//! `select` picks the walker for a triangle: the entry of [`SPECIALISED`] whose key
-//! equals the triangle's [`RasterKey`], otherwise the reference walker. A key holds every
+//! [`table_walker`] gives the walker for a triangle: the entry of [`SPECIALISED`] whose
+//! key equals the triangle's [`RasterKey`], otherwise none (the model's generic walker
+//! runs). Only the hardware model offers the table ([`PixelModel::specialised`]). A key holds every
 //! bit the FBI stores (only `alphaMode.alpha_ref` is left out and read at run time), so a
 //! specialised walker computes with exactly the values the reference reads.
 //! `crates/board/tests/reference_vs_fast.rs` replays every trace both ways and requires
@@ -24,6 +25,7 @@
 use sst1_regs::addr;
 
 use crate::fbi::Fbi;
+use crate::model::{PixelModel, Walker};
 use crate::pipeline::DrawState;
 use crate::raster::TexelSource;
 
@@ -128,10 +130,7 @@ impl RasterKey {
     }
 }
 
-/// A triangle walker: draws the triangle in `fbi.params` with the captured state.
-pub(crate) type Walker<T> = fn(&mut Fbi, &DrawState, &mut T);
-
-/// Defines [`SPECIALISED`] and the `match` in [`select`] from one list, so that the two
+/// Defines [`SPECIALISED`] and the `match` in [`table_walker`] from one list, so that the two
 /// cannot drift apart.
 macro_rules! specialised {
     ($( $(#[$doc:meta])* ($cp:literal, $am:literal, $fm:literal, $zm:literal), )*) => {
@@ -141,20 +140,21 @@ macro_rules! specialised {
         /// drew when it was added.
         pub const SPECIALISED: &[(u32, u32, u32, u32)] = &[$(($cp, $am, $fm, $zm)),*];
 
-        /// The walker for `key`: a specialised one if the table has the key, otherwise the
-        /// reference walker.
-        pub(crate) fn select<T: TexelSource>(key: RasterKey) -> Walker<T> {
+        /// Model `M`'s walker specialised for `key`, if the table has the key. A model
+        /// offers these through [`PixelModel::specialised`].
+        pub fn table_walker<M: PixelModel, T: TexelSource>(key: RasterKey) -> Option<Walker<T>> {
             match (key.color_path, key.alpha_mode, key.fog_mode, key.fbz_mode) {
                 $(
-                    ($cp, $am, $fm, $zm) => Fbi::walk::<
+                    ($cp, $am, $fm, $zm) => Some(Fbi::walk::<
+                        M,
                         T,
                         { known_bits(COLOR_PATH_BITS, $cp) },
                         { known_bits(ALPHA_MODE_BITS, $am) },
                         { known_bits(FOG_MODE_BITS, $fm) },
                         { known_bits(FBZ_MODE_BITS, $zm) },
-                    >,
+                    >),
                 )*
-                _ => Fbi::walk::<T, LIVE, LIVE, LIVE, LIVE>,
+                _ => None,
             }
         }
     };

@@ -290,9 +290,9 @@ pub enum DecalInvert {
     Applied,
 }
 
-/// Switches for behaviour on which the references disagree. `Default` is the majority of
-/// MAME, DOSBox Staging and 86Box, except `trilinear`, which follows the spec.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+/// Switches for behaviour on which the references disagree. `Default` is the hardware
+/// model, [`TexelProfile::HARDWARE`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct TexelProfile {
     /// LOD computation.
@@ -329,6 +329,56 @@ pub struct TexelProfile {
     pub persp_divide: PerspDivide,
 }
 
+impl TexelProfile {
+    /// The hardware model: our reading of the SST-1 for every disputed behaviour (each
+    /// switch's `#[default]` variant; docs/accuracy.md gives the evidence).
+    pub const HARDWARE: TexelProfile = TexelProfile {
+        lod: LodCalc::Dosbox,
+        lod_dither: LodDither::Matrix4x4,
+        bilinear: BilinearPrecision::Bits4,
+        a8: A8Expansion::AlphaInRgb,
+        rgb332_blue: Rgb332Blue::Replicated,
+        filter_select: FilterSelect::ByLod,
+        detail: DetailRule::WholeLods,
+        ncc_q2: NccQ2Write::Q2,
+        chain: ChainModel::Full,
+        texture_cache: TextureCacheKey::Exact,
+        ncc_update: NccUpdate::Immediate,
+        trilinear: Trilinear::Spec,
+        lod_zerofrac: LodZeroFrac::Ignored,
+        coord_rounding: CoordRounding::Floor,
+        decal_invert: DecalInvert::Ignored,
+        persp_divide: PerspDivide::Double,
+    };
+}
+
+impl Default for TexelProfile {
+    fn default() -> Self {
+        Self::HARDWARE
+    }
+}
+
+/// A model of the Texelfx, chosen at compile time: the seam between the texture stages
+/// and the models of the chip, as `pixelfx::model` is for the pixel stages. A model with
+/// fixed switches returns a constant profile, so the tests of its switches fold away.
+pub trait TexelModel: 'static {
+    /// The switches in force. `runtime` is the profile the TMU holds
+    /// ([`Tmu::set_profile`]); a model with fixed switches ignores it.
+    fn texel(runtime: &TexelProfile) -> TexelProfile;
+}
+
+/// The generic model: the profile held at run time, every switch tested per texel. For
+/// experiments and for tests of this crate alone.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RuntimeProfile;
+
+impl TexelModel for RuntimeProfile {
+    #[inline(always)]
+    fn texel(runtime: &TexelProfile) -> TexelProfile {
+        *runtime
+    }
+}
+
 /// What [`Tmu::output`] returns.
 #[derive(Clone, Copy)]
 enum Output {
@@ -348,7 +398,8 @@ pub struct Tmu {
     ram: Vec<u8>,
     /// Memory size minus 1 (a power of two minus 1).
     ram_mask: u32,
-    /// Behaviour switches.
+    /// Behaviour switches held at run time: what the generic model ([`RuntimeProfile`])
+    /// reads, and the fixed models' own profile (the board keeps the two in step).
     profile: TexelProfile,
     /// `textureMode`.
     texture_mode: u32,
@@ -566,29 +617,32 @@ impl Tmu {
     }
 
     /// Called at the start of each triangle, after its register writes: computes the base
-    /// LOD from the S/T gradients.
-    pub fn begin_triangle(&mut self) {
-        if self.profile.texture_cache == TextureCacheKey::Box86 {
+    /// LOD from the S/T gradients. `M` is the model of the chip ([`TexelModel`]; the caller
+    /// guarantees that the profile this TMU holds is `M`'s), here and in every method that
+    /// shades.
+    pub fn begin_triangle<M: TexelModel>(&mut self) {
+        let profile = M::texel(&self.profile);
+        if profile.texture_cache == TextureCacheKey::Box86 {
             self.box86_bind();
         }
         self.span.clear();
         let g = [self.ddx[0], self.ddy[0], self.ddx[1], self.ddy[1]];
-        self.lod_base = lod::lod_base(self.profile.lod, g, self.t_lod);
+        self.lod_base = lod::lod_base(profile.lod, g, self.t_lod);
     }
 
     /// The FBI is about to shade `len` pixels from offset `(dx, dy)` (as in [`Tmu::texel`])
     /// rightwards: computes their perspective factors in one loop (see `SpanRecip`).
     /// Optional; texels are the same without it. The reference path
     /// ([`Tmu::set_reference`]) skips it.
-    pub fn begin_span(&mut self, dx: i32, dy: i32, len: usize) {
+    pub fn begin_span<M: TexelModel>(&mut self, dx: i32, dy: i32, len: usize) {
+        let profile = M::texel(&self.profile);
         let persp = TextureMode(self.texture_mode).tpersp_st();
-        if !self.cached || !persp || self.profile.persp_divide != PerspDivide::Double {
+        if !self.cached || !persp || profile.persp_divide != PerspDivide::Double {
             self.span.clear();
             return;
         }
         let w0 = self.iterated(2, dx, dy);
-        self.span
-            .fill(self.profile.lod, (dx, dy), len, w0, self.ddx[2]);
+        self.span.fill(profile.lod, (dx, dy), len, w0, self.ddx[2]);
     }
 
     /// Subpixel correction of the S/T/W start registers (`fbzColorPath` bit 26):
@@ -620,18 +674,18 @@ impl Tmu {
     /// `dx`, `dy`: integer pixel offsets from vertex A's integer position; `x`, `y`: screen
     /// position (LOD dither); `other`: the upstream TMU's output (black and transparent for
     /// the last TMU of the chain).
-    pub fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32, other: Rgba) -> Rgba {
-        self.output(dx, dy, x, y, Output::Combined(other))
+    pub fn texel<M: TexelModel>(&mut self, dx: i32, dy: i32, x: i32, y: i32, other: Rgba) -> Rgba {
+        self.output::<M>(dx, dy, x, y, Output::Combined(other))
     }
 
     /// The filtered texel for one pixel, without the combine unit ([`ChainModel::Box86`]).
-    pub fn texel_uncombined(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
-        self.output(dx, dy, x, y, Output::Texel)
+    pub fn texel_uncombined<M: TexelModel>(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
+        self.output::<M>(dx, dy, x, y, Output::Texel)
     }
 
     /// The upstream TMU's output under [`ChainModel::Box86`], with the downstream TMU's
     /// `textureMode` (whose `reverse_blend` bits 86Box applies here).
-    pub fn texel_box86_upstream(
+    pub fn texel_box86_upstream<M: TexelModel>(
         &mut self,
         dx: i32,
         dy: i32,
@@ -639,20 +693,21 @@ impl Tmu {
         y: i32,
         downstream_mode: u32,
     ) -> Rgba {
-        self.output(dx, dy, x, y, Output::Box86Upstream(downstream_mode))
+        self.output::<M>(dx, dy, x, y, Output::Box86Upstream(downstream_mode))
     }
 
-    fn output(&mut self, dx: i32, dy: i32, x: i32, y: i32, what: Output) -> Rgba {
+    fn output<M: TexelModel>(&mut self, dx: i32, dy: i32, x: i32, y: i32, what: Output) -> Rgba {
+        let profile = M::texel(&self.profile);
         if self.lut_stale {
             self.rebuild_lut();
         }
         let at = |i| self.iterated(i, dx, dy);
         let span = self.span.get(dx, dy);
-        let smp = self.sample(at(0), at(1), at(2), x, y, span);
+        let smp = self.sample::<M>(at(0), at(1), at(2), x, y, span);
         let factors = || Factors {
-            detail: detail_factor(self.t_detail, smp.lod, self.profile.detail),
+            detail: detail_factor(self.t_detail, smp.lod, profile.detail),
             lod_fraction: smp.lod_fraction,
-            odd_lod: self.profile.trilinear == Trilinear::Spec && smp.odd_lod,
+            odd_lod: profile.trilinear == Trilinear::Spec && smp.odd_lod,
         };
         let [r, g, b, a] = match what {
             Output::Texel => smp.texel,

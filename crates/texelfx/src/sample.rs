@@ -17,7 +17,8 @@
 use crate::format::{self, Decode};
 use crate::lod::{self, f64_to_i32_x86, pixel_lod, PixelLod};
 use crate::{
-    BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodZeroFrac, PerspDivide, Tmu,
+    BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodZeroFrac, PerspDivide, TexelModel,
+    Tmu,
 };
 use sst1_regs::{TLod, TextureMode};
 
@@ -36,7 +37,7 @@ pub(crate) struct Sample {
 impl Tmu {
     /// Fetches the texel for iterated S, T (.32, i.e. 14.18 << 14) and W (.32, 2.30 << 2).
     /// `span`: `256 / W` and the LOD's W term from [`SpanRecip`] when it holds this pixel.
-    pub(crate) fn sample(
+    pub(crate) fn sample<M: TexelModel>(
         &mut self,
         iters: i64,
         itert: i64,
@@ -45,18 +46,18 @@ impl Tmu {
         y: i32,
         span: Option<(f64, i32)>,
     ) -> Sample {
+        let profile = M::texel(&self.profile);
         let mode = TextureMode(self.texture_mode);
         let persp = mode.tpersp_st();
-        let floor = self.profile.coord_rounding == CoordRounding::Floor;
-        let (mut s, mut t) = if persp && self.profile.persp_divide == PerspDivide::DosboxReciprocal
-        {
+        let floor = profile.coord_rounding == CoordRounding::Floor;
+        let (mut s, mut t) = if persp && profile.persp_divide == PerspDivide::DosboxReciprocal {
             // Source: DOSBox Staging `TEXTURE_PIPELINE`: S * (1/W as .15) >> 29 gives 14.18,
             // truncated to 32 bits; >> 10 more gives the 24.8 used here (a floor, as
             // DOSBox's later shifts are).
             let (oow, _) = crate::lod::reciplog_dosbox(iterw);
             let div = |v: i64| (oow.wrapping_mul(v) >> 29) as i32 >> 10;
             (div(iters), div(itert))
-        } else if persp && self.profile.persp_divide == PerspDivide::Box86 {
+        } else if persp && profile.persp_divide == PerspDivide::Box86 {
             let oow = box86_oow(iterw);
             (box86_divide(iters, oow), box86_divide(itert, oow))
         } else if persp {
@@ -89,19 +90,13 @@ impl Tmu {
             base: self.lod_base,
             persp_term: persp.then(|| match span {
                 Some((_, term)) => term,
-                None => lod::w_term(self.profile.lod, iterw),
+                None => lod::w_term(profile.lod, iterw),
             }),
             x,
             y,
         };
         let dither = mode.tloddither();
-        let lod = pixel_lod(
-            self.profile.lod,
-            self.profile.lod_dither,
-            &p,
-            self.t_lod,
-            dither,
-        );
+        let lod = pixel_lod(profile.lod, profile.lod_dither, &p, self.t_lod, dither);
         let lodmin = (TLod(self.t_lod).lodmin() << 6) as i32;
         // lod >= 0 after the clamp, so the integer part is 0..=8.
         let ilod_raw = (lod >> 8) as usize;
@@ -112,7 +107,7 @@ impl Tmu {
         // UNVERIFIED: an odd-only texture at LOD 8 would read past LOD 8; stay on LOD 8.
         let ilod = ilod.min(8);
 
-        let point = match self.profile.filter_select {
+        let point = match profile.filter_select {
             FilterSelect::ByLod if lod == lodmin => !mode.tmagfilter(),
             FilterSelect::ByLod => !mode.tminfilter(),
             FilterSelect::EitherBit => !mode.tmagfilter() && !mode.tminfilter(),
@@ -121,12 +116,12 @@ impl Tmu {
             if !self.cache.has(ilod) {
                 self.decode_level(ilod);
             }
-            self.filter::<{ Decode::CACHED }>(point, ilod, s, t)
+            self.filter::<{ Decode::CACHED }>(profile.bilinear, point, ilod, s, t)
         } else {
-            self.uncached_filter(point, ilod, s, t)
+            self.uncached_filter(profile.bilinear, point, ilod, s, t)
         };
         let zero_frac =
-            self.profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
+            profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
         Sample {
             texel,
             lod,
@@ -136,13 +131,20 @@ impl Tmu {
     }
 
     /// [`Tmu::filter`] reading texels straight from memory in the current format.
-    fn uncached_filter(&self, point: bool, ilod: usize, s: i32, t: i32) -> [u8; 4] {
+    fn uncached_filter(
+        &self,
+        precision: BilinearPrecision,
+        point: bool,
+        ilod: usize,
+        s: i32,
+        t: i32,
+    ) -> [u8; 4] {
         match self.decode {
-            Decode::Lut8 => self.filter::<{ Decode::LUT8 }>(point, ilod, s, t),
-            Decode::LutLo16 => self.filter::<{ Decode::LUT_LO16 }>(point, ilod, s, t),
-            Decode::Rgb565 => self.filter::<{ Decode::RGB565 }>(point, ilod, s, t),
-            Decode::Argb1555 => self.filter::<{ Decode::ARGB1555 }>(point, ilod, s, t),
-            Decode::Argb4444 => self.filter::<{ Decode::ARGB4444 }>(point, ilod, s, t),
+            Decode::Lut8 => self.filter::<{ Decode::LUT8 }>(precision, point, ilod, s, t),
+            Decode::LutLo16 => self.filter::<{ Decode::LUT_LO16 }>(precision, point, ilod, s, t),
+            Decode::Rgb565 => self.filter::<{ Decode::RGB565 }>(precision, point, ilod, s, t),
+            Decode::Argb1555 => self.filter::<{ Decode::ARGB1555 }>(precision, point, ilod, s, t),
+            Decode::Argb4444 => self.filter::<{ Decode::ARGB4444 }>(precision, point, ilod, s, t),
         }
     }
 
@@ -171,11 +173,19 @@ impl Tmu {
     /// texels decoded as `D` (a [`Decode`] constant, so that each format gets its own
     /// copy of the loop without a per-texel branch).
     #[inline]
-    fn filter<const D: u8>(&self, point: bool, lod: usize, s: i32, t: i32) -> [u8; 4] {
+    fn filter<const D: u8>(
+        &self,
+        precision: BilinearPrecision,
+        point: bool,
+        lod: usize,
+        s: i32,
+        t: i32,
+    ) -> [u8; 4] {
         let texel = if point {
             self.point::<D>(lod, s >> (lod + 8), t >> (lod + 8))
         } else {
             self.bilinear::<D>(
+                precision,
                 lod,
                 (s >> lod).wrapping_sub(0x80),
                 (t >> lod).wrapping_sub(0x80),
@@ -223,7 +233,13 @@ impl Tmu {
 
     /// Bilinear filtering; `s`, `t` are 24.8 at this LOD with half a texel subtracted.
     #[inline(always)]
-    fn bilinear<const D: u8>(&self, lod: usize, s: i32, t: i32) -> u32 {
+    fn bilinear<const D: u8>(
+        &self,
+        precision: BilinearPrecision,
+        lod: usize,
+        s: i32,
+        t: i32,
+    ) -> u32 {
         let smax = self.layout.smax(lod) as i32;
         let tmax = self.layout.tmax(lod) as i32;
         let mode = TextureMode(self.texture_mode);
@@ -234,7 +250,7 @@ impl Tmu {
         let c10 = self.texel_at::<D>(lod, s0, t1);
         let c11 = self.texel_at::<D>(lod, s1, t1);
         let (sf, tf) = ((s & 0xff) as u32, (t & 0xff) as u32);
-        match self.profile.bilinear {
+        match precision {
             BilinearPrecision::Bits4 => {
                 let (u, v) = (sf >> 4, tf >> 4);
                 blend4(

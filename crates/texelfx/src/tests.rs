@@ -1,6 +1,8 @@
 //! End-to-end tests through the public `Tmu` interface.
 
 use super::*;
+/// These tests set profiles at run time: the generic model reads them.
+use crate::RuntimeProfile as R;
 
 /// textureMode combine fields that output the local texel unchanged (Glide's "decal").
 const DECAL: u32 = (1 << 12) | (1 << 18) | (1 << 21) | (1 << 27);
@@ -81,7 +83,7 @@ fn rgb565_8x8(mode_extra: u32) -> Tmu {
         tex(32),
         ONE_W,
     );
-    tmu.begin_triangle();
+    tmu.begin_triangle::<R>();
     tmu
 }
 
@@ -113,23 +115,23 @@ const OPAQUE_BLACK: Rgba = Rgba {
 #[test]
 fn point_sampling_and_wrap() {
     let mut tmu = rgb565_8x8(0);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
-    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), BLUE);
-    assert_eq!(tmu.texel(1, 0, 0, 0, BLACK), GREEN);
-    assert_eq!(tmu.texel(2, 0, 0, 0, BLACK), OPAQUE_BLACK);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(-1, 0, 0, 0, BLACK), BLUE);
+    assert_eq!(tmu.texel::<R>(1, 0, 0, 0, BLACK), GREEN);
+    assert_eq!(tmu.texel::<R>(2, 0, 0, 0, BLACK), OPAQUE_BLACK);
     // s = 8 wraps to 0
-    assert_eq!(tmu.texel(5, 0, 0, 0, BLACK), GREEN);
+    assert_eq!(tmu.texel::<R>(5, 0, 0, 0, BLACK), GREEN);
     // t = 10 wraps to 2
-    assert_eq!(tmu.texel(0, 8, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(0, 8, 0, 0, BLACK), RED);
 }
 
 #[test]
 fn point_sampling_clamp() {
     let mut tmu = rgb565_8x8(CLAMPS | CLAMPT);
-    assert_eq!(tmu.texel(5, 0, 0, 0, BLACK), WHITE);
-    assert_eq!(tmu.texel(-9, 0, 0, 0, BLACK), GREEN);
+    assert_eq!(tmu.texel::<R>(5, 0, 0, 0, BLACK), WHITE);
+    assert_eq!(tmu.texel::<R>(-9, 0, 0, 0, BLACK), GREEN);
     // t clamps to 7: an empty row
-    assert_eq!(tmu.texel(0, 8, 0, 0, BLACK), OPAQUE_BLACK);
+    assert_eq!(tmu.texel::<R>(0, 8, 0, 0, BLACK), OPAQUE_BLACK);
 }
 
 #[test]
@@ -137,8 +139,8 @@ fn bilinear_four_bit_weights() {
     let mut tmu = rgb565_8x8(BILINEAR);
     // S = texel 3 centre + 9/32 of a LOD-5 texel: s fraction 0x48 -> 4-bit weight 4/16
     tmu.write_reg(addr::START_S, tex(3 * 32 + 16 + 9) as u32);
-    tmu.begin_triangle();
-    let c = tmu.texel(0, 0, 0, 0, BLACK);
+    tmu.begin_triangle::<R>();
+    let c = tmu.texel::<R>(0, 0, 0, 0, BLACK);
     assert_eq!(
         c,
         Rgba {
@@ -154,7 +156,7 @@ fn bilinear_four_bit_weights() {
         ..Default::default()
     });
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 183,
             g: 71,
@@ -171,9 +173,9 @@ fn bilinear_blends_in_t_and_clamps() {
     // zero memory (RGB565 black, alpha ff)
     tmu.write_reg(addr::START_S, tex(7 * 32 + 16) as u32);
     tmu.write_reg(addr::START_T, tex(3 * 32) as u32);
-    tmu.begin_triangle();
+    tmu.begin_triangle::<R>();
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 127,
             g: 127,
@@ -183,7 +185,7 @@ fn bilinear_blends_in_t_and_clamps() {
     );
     // beyond the right edge both neighbours clamp to texel 7
     assert_eq!(
-        tmu.texel(3, 0, 0, 0, BLACK),
+        tmu.texel::<R>(3, 0, 0, 0, BLACK),
         Rgba {
             r: 127,
             g: 127,
@@ -205,17 +207,17 @@ fn perspective_divide_and_tclampw() {
         tex(16),
         1 << 29,
     );
-    tmu.begin_triangle();
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
-    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), BLUE);
+    tmu.begin_triangle::<R>();
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(-1, 0, 0, 0, BLACK), BLUE);
     // negative W: coordinates flip sign (wrap) unless tclampw forces them to 0
     tmu.write_reg(addr::START_W, (-(1i32 << 29)) as u32);
     tmu.write_reg(addr::START_S, tex(-(2 * 32 + 16) / 2) as u32);
     tmu.write_reg(addr::START_T, tex(-(2 * 32 + 16) / 2) as u32);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), BLUE);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), BLUE);
     tmu.write_reg(addr::TEXTURE_MODE, fmt(10) | DECAL | PERSP | CLAMPW);
     tmu.write_texture(addr16(5, 0, 0), 0x0000_f800);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), RED);
 }
 
 #[test]
@@ -295,8 +297,8 @@ fn mip_chain(t_lod: u32) -> Tmu {
 
 fn at_gradient(tmu: &mut Tmu, log2: u32) -> u8 {
     set_iter(tmu, 0, 0, tex(1 << log2), tex(1 << log2), ONE_W);
-    tmu.begin_triangle();
-    tmu.texel(0, 0, 0, 0, BLACK).r
+    tmu.begin_triangle::<R>();
+    tmu.texel::<R>(0, 0, 0, 0, BLACK).r
 }
 
 #[test]
@@ -321,14 +323,14 @@ fn lod_dither_adds_matrix_sixteenths() {
     let mut tmu = mip_chain((0x20 << 6) | (2 << 12));
     tmu.write_reg(addr::TEXTURE_MODE, fmt(13) | DECAL | 0x10);
     set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W);
-    tmu.begin_triangle();
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK).r, 20);
-    assert_eq!(tmu.texel(0, 0, 1, 0, BLACK).r, 40);
+    tmu.begin_triangle::<R>();
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK).r, 20);
+    assert_eq!(tmu.texel::<R>(0, 0, 1, 0, BLACK).r, 40);
     tmu.set_profile(TexelProfile {
         lod_dither: LodDither::Off,
         ..Default::default()
     });
-    assert_eq!(tmu.texel(0, 0, 1, 0, BLACK).r, 20);
+    assert_eq!(tmu.texel::<R>(0, 0, 1, 0, BLACK).r, 20);
 }
 
 #[test]
@@ -347,22 +349,22 @@ fn trilinear_reverses_blend_on_odd_lods() {
     let mut tmu = mip_chain((0x20 << 6) | (2 << 12));
     tmu.write_reg(addr::TEXTURE_MODE, mode);
     set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W); // LOD 1.5, odd
-    tmu.begin_triangle();
-    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 128);
+    tmu.begin_triangle::<R>();
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 128);
     set_iter(&mut tmu, 0, 0, tex(4), tex(4), ONE_W); // LOD 2.5, even
-    tmu.begin_triangle();
-    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 127);
+    tmu.begin_triangle::<R>();
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 127);
     // without the trilinear bit, or with the MAME/DOSBox profile, odd LODs blend normally
     set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W);
-    tmu.begin_triangle();
+    tmu.begin_triangle::<R>();
     tmu.set_profile(TexelProfile {
         trilinear: Trilinear::Ignored,
         ..Default::default()
     });
-    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 127);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 127);
     tmu.set_profile(TexelProfile::default());
     tmu.write_reg(addr::TEXTURE_MODE, mode & !(1 << 30));
-    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 127);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 127);
 }
 
 #[test]
@@ -372,13 +374,13 @@ fn lod_zerofrac_profile() {
     let mut tmu = mip_chain((0x20 << 6) | (2 << 12) | (1 << 23));
     tmu.write_reg(addr::TEXTURE_MODE, mode);
     set_iter(&mut tmu, 0, 0, tex(2), tex(2), ONE_W);
-    tmu.begin_triangle();
-    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 128);
+    tmu.begin_triangle::<R>();
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 128);
     tmu.set_profile(TexelProfile {
         lod_zerofrac: LodZeroFrac::Spec,
         ..Default::default()
     });
-    assert_eq!(tmu.texel(0, 0, 0, 0, WHITE).r, 0);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 0);
 }
 
 /// An 8-bit texture of one texel at LOD 8 with raw value `raw`, format `f`.
@@ -388,7 +390,7 @@ fn one_texel(f: u32, raw: u8) -> Tmu {
     tmu.write_reg(addr::T_LOD, fixed_lod(8));
     tmu.write_texture(8 << 17, u32::from(raw));
     set_iter(&mut tmu, 0, 0, tex(1), tex(1), ONE_W);
-    tmu.begin_triangle();
+    tmu.begin_triangle::<R>();
     tmu
 }
 
@@ -399,10 +401,10 @@ fn ncc_tables_through_registers() {
     tmu.write_reg(addr::NCC_TABLE1 + 4 * 4, (10 << 18) | (20 << 9) | 30); // I0
     tmu.write_reg(addr::NCC_TABLE1 + 10 * 4, (0x1ff << 18) | (0x1fe << 9) | 1); // Q2 -1,-2,+1
                                                                                 // table 0 is still selected and empty
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), OPAQUE_BLACK);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), OPAQUE_BLACK);
     tmu.write_reg(addr::TEXTURE_MODE, fmt(1) | DECAL | 0x20);
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 0x59,
             g: 0x62,
@@ -414,7 +416,7 @@ fn ncc_tables_through_registers() {
     tmu.write_reg(addr::TEXTURE_MODE, fmt(9) | DECAL | 0x20);
     tmu.write_texture(8 << 17, 0x0000_c012);
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 0x59,
             g: 0x62,
@@ -432,10 +434,10 @@ fn ncc_update_deferred_profile() {
         ..Default::default()
     });
     tmu.write_reg(addr::NCC_TABLE0, 0x0000_7700);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), OPAQUE_BLACK);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), OPAQUE_BLACK);
     tmu.write_reg(addr::T_DETAIL, 0);
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 0x77,
             g: 0x77,
@@ -451,7 +453,7 @@ fn palette_writes_through_ncc0_iq() {
     // I3 (odd word): entry {3, 1} = 7; the NCC table is not written
     tmu.write_reg(addr::NCC_TABLE0 + 7 * 4, 0x8312_3456);
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 0x12,
             g: 0x34,
@@ -467,7 +469,7 @@ fn palette_writes_through_ncc0_iq() {
     tmu.write_reg(addr::TEXTURE_MODE, fmt(14) | DECAL);
     tmu.write_texture(8 << 17, 0x0000_4007);
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 0x12,
             g: 0x34,
@@ -479,17 +481,20 @@ fn palette_writes_through_ncc0_iq() {
 
 #[test]
 fn eight_bit_formats_through_the_pipeline() {
-    assert_eq!(one_texel(2, 0x5a).texel(0, 0, 0, 0, BLACK), rgba([0x5a; 4]));
     assert_eq!(
-        one_texel(3, 0x5a).texel(0, 0, 0, 0, BLACK),
+        one_texel(2, 0x5a).texel::<R>(0, 0, 0, 0, BLACK),
+        rgba([0x5a; 4])
+    );
+    assert_eq!(
+        one_texel(3, 0x5a).texel::<R>(0, 0, 0, 0, BLACK),
         rgba([0x5a, 0x5a, 0x5a, 0xff])
     );
     assert_eq!(
-        one_texel(4, 0x5a).texel(0, 0, 0, 0, BLACK),
+        one_texel(4, 0x5a).texel::<R>(0, 0, 0, 0, BLACK),
         rgba([0xaa, 0xaa, 0xaa, 0x55])
     );
     assert_eq!(
-        one_texel(0, 0xe0).texel(0, 0, 0, 0, BLACK),
+        one_texel(0, 0xe0).texel::<R>(0, 0, 0, 0, BLACK),
         rgba([0xff, 0, 0, 0xff])
     );
 }
@@ -547,7 +552,7 @@ fn other_tmu_passes_through_combine() {
         b: 3,
         a: 4,
     };
-    assert_eq!(tmu.texel(0, 0, 0, 0, c), c);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, c), c);
 }
 
 #[test]
@@ -557,16 +562,16 @@ fn coordinate_rounding_profile() {
     for persp in [0, PERSP] {
         let mut tmu = rgb565_8x8(persp);
         set_iter(&mut tmu, -1, tex(2 * 32 + 16), tex(32), tex(32), ONE_W);
-        tmu.begin_triangle();
-        assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), WHITE, "persp {persp}");
+        tmu.begin_triangle::<R>();
+        assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), WHITE, "persp {persp}");
         tmu.set_profile(TexelProfile {
             coord_rounding: CoordRounding::TowardZero,
             ..TexelProfile::default()
         });
-        assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN, "persp {persp}");
+        assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), GREEN, "persp {persp}");
         // Exactly zero is texel 0 either way.
         tmu.write_reg(addr::START_S, 0);
-        assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN, "persp {persp}");
+        assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), GREEN, "persp {persp}");
     }
 }
 
@@ -575,13 +580,13 @@ fn decal_invert_profile() {
     // Decal with both invert bits: the default passes the texel unchanged.
     let invert = (1 << 20) | (1 << 29);
     let mut tmu = rgb565_8x8(invert);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), RED);
     tmu.set_profile(TexelProfile {
         decal_invert: DecalInvert::Applied,
         ..TexelProfile::default()
     });
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 0,
             g: 255,
@@ -594,7 +599,7 @@ fn decal_invert_profile() {
     let mode = (fmt(10) | DECAL | invert) & !(1 << 27);
     tmu.write_reg(addr::TEXTURE_MODE, mode);
     assert_eq!(
-        tmu.texel(0, 0, 0, 0, BLACK),
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
         Rgba {
             r: 0,
             g: 255,
@@ -611,13 +616,13 @@ fn persp_divide_profile() {
     // it lands in texel 3 (red).
     let mut tmu = rgb565_8x8(PERSP);
     set_iter(&mut tmu, tex(96), tex(60), tex(24), tex(24), 3 << 28);
-    tmu.begin_triangle();
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN);
+    tmu.begin_triangle::<R>();
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), GREEN);
     tmu.set_profile(TexelProfile {
         persp_divide: PerspDivide::DosboxReciprocal,
         ..TexelProfile::default()
     });
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), RED);
 }
 
 /// Every write that changes a texel reaches the next triangle through the decoded-texel
@@ -625,7 +630,7 @@ fn persp_divide_profile() {
 #[test]
 fn texel_cache_sees_every_write_and_keeps_what_is_unchanged() {
     let mut tmu = rgb565_8x8(0);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), RED);
     assert!(tmu.cache.has(5));
 
     // A download elsewhere (LOD 4) keeps LOD 5; one over texel (3, 2) drops it.
@@ -633,8 +638,8 @@ fn texel_cache_sees_every_write_and_keeps_what_is_unchanged() {
     assert!(tmu.cache.has(5));
     tmu.write_texture(addr16(5, 2, 2), 0x001f_f800);
     assert!(!tmu.cache.has(5));
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), BLUE);
-    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), RED);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), BLUE);
+    assert_eq!(tmu.texel::<R>(-1, 0, 0, 0, BLACK), RED);
 
     // Combine bits and tDetail leave the texels alone.
     tmu.write_reg(addr::TEXTURE_MODE, fmt(10) | DECAL | BILINEAR);
@@ -643,21 +648,21 @@ fn texel_cache_sees_every_write_and_keeps_what_is_unchanged() {
     assert!(tmu.cache.has(5));
     // An NCC table write does not change RGB565 texels.
     tmu.write_reg(addr::NCC_TABLE0, 0x0000_7700);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), BLUE);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), BLUE);
     assert!(tmu.cache.has(5));
 
     // A new base address moves the texture: texel (3, 2) now reads LOD 5 of a chain 8
     // bytes higher, i.e. the stored texel (7, 2) (white).
     tmu.write_reg(addr::TEX_BASE_ADDR, 1);
     assert!(!tmu.cache.has(5));
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), WHITE);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), WHITE);
     // A format change re-decodes the same bytes: 0xffff as ARGB1555.
     tmu.write_reg(addr::TEXTURE_MODE, fmt(11) | DECAL);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), WHITE);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), WHITE);
     tmu.write_reg(addr::TEXTURE_MODE, fmt(12) | DECAL);
     tmu.write_reg(addr::TEX_BASE_ADDR, 0);
     // 0xf800 (texel (2, 2) after the rewrite above) as ARGB4444: a=f, r=8, g=b=0.
-    assert_eq!(tmu.texel(-1, 0, 0, 0, BLACK), rgba([0x88, 0, 0, 0xff]));
+    assert_eq!(tmu.texel::<R>(-1, 0, 0, 0, BLACK), rgba([0x88, 0, 0, 0xff]));
 }
 
 /// Palette writes reach P8 texels already decoded; the cached and the reference path
@@ -666,9 +671,15 @@ fn texel_cache_sees_every_write_and_keeps_what_is_unchanged() {
 fn texel_cache_palette_and_reference_path_agree() {
     let mut tmu = one_texel(5, 7);
     tmu.write_reg(addr::NCC_TABLE0 + 7 * 4, 0x8312_3456);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), rgba([0x12, 0x34, 0x56, 0xff]));
+    assert_eq!(
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
+        rgba([0x12, 0x34, 0x56, 0xff])
+    );
     tmu.write_reg(addr::NCC_TABLE0 + 7 * 4, 0x8365_4321);
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), rgba([0x65, 0x43, 0x21, 0xff]));
+    assert_eq!(
+        tmu.texel::<R>(0, 0, 0, 0, BLACK),
+        rgba([0x65, 0x43, 0x21, 0xff])
+    );
 
     let mut cached = rgb565_8x8(BILINEAR);
     let mut reference = rgb565_8x8(BILINEAR);
@@ -676,8 +687,8 @@ fn texel_cache_palette_and_reference_path_agree() {
     for dy in -9..9 {
         for dx in -9..9 {
             assert_eq!(
-                cached.texel(dx, dy, dx, dy, BLACK),
-                reference.texel(dx, dy, dx, dy, BLACK),
+                cached.texel::<R>(dx, dy, dx, dy, BLACK),
+                reference.texel::<R>(dx, dy, dx, dy, BLACK),
                 "({dx}, {dy})"
             );
         }
@@ -700,7 +711,7 @@ fn span_perspective_factors_match_per_pixel_divide() {
         tmu.write_reg(addr::D_S_DY, tex(1) as u32);
         tmu.write_reg(addr::D_T_DY, tex(2) as u32);
         tmu.write_reg(addr::D_W_DY, (1 << 21) as u32);
-        tmu.begin_triangle();
+        tmu.begin_triangle::<R>();
     };
     let mut spans = rgb565_8x8(PERSP | BILINEAR);
     let mut plain = rgb565_8x8(PERSP | BILINEAR);
@@ -708,11 +719,11 @@ fn span_perspective_factors_match_per_pixel_divide() {
     setup(&mut plain);
     for dy in 0..4 {
         // W reaches zero near dx = 16 + dy / 2 and turns negative after it.
-        spans.begin_span(-2, dy, 36);
+        spans.begin_span::<R>(-2, dy, 36);
         for dx in -4..40 {
             assert_eq!(
-                spans.texel(dx, dy, dx, dy, BLACK),
-                plain.texel(dx, dy, dx, dy, BLACK),
+                spans.texel::<R>(dx, dy, dx, dy, BLACK),
+                plain.texel::<R>(dx, dy, dx, dy, BLACK),
                 "({dx}, {dy})"
             );
         }
@@ -751,13 +762,13 @@ fn persp_divide_box86_profile() {
     // MAME's truncated quotient stays in texel 3 (red); 86Box rounds it to 128.0.
     let mut tmu = rgb565_8x8(PERSP);
     set_iter(&mut tmu, tex(128) - 256, tex(80), tex(32), tex(32), ONE_W);
-    tmu.begin_triangle();
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), RED);
+    tmu.begin_triangle::<R>();
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), RED);
     tmu.set_profile(TexelProfile {
         persp_divide: PerspDivide::Box86,
         ..TexelProfile::default()
     });
-    assert_eq!(tmu.texel(0, 0, 0, 0, BLACK), GREEN);
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, BLACK), GREEN);
 }
 
 /// `NccQ2Write`: table 0's Q2 (register word 10) lands in Q2, or in I2 as 86Box stores it.
@@ -787,8 +798,8 @@ fn ncc_table0_q2_write_target() {
 #[test]
 fn texture_cache_key_choices() {
     let sample = |tmu: &mut Tmu| {
-        tmu.begin_triangle();
-        tmu.texel(0, 0, 0, 0, BLACK)
+        tmu.begin_triangle::<R>();
+        tmu.texel::<R>(0, 0, 0, 0, BLACK)
     };
     for (choice, stale) in [
         (TextureCacheKey::Exact, false),
@@ -816,4 +827,29 @@ fn texture_cache_key_choices() {
         tmu.write_texture(8 << 17, 0x6b6b_6b6b);
         assert_eq!(sample(&mut tmu), rgba([0x6b; 4]), "{choice:?}");
     }
+}
+
+/// The hardware model's profile is every switch's `#[default]` variant, so that the
+/// enums' own documentation of the default and the model cannot disagree.
+#[test]
+fn hardware_is_every_switch_default() {
+    let d = TexelProfile {
+        lod: Default::default(),
+        lod_dither: Default::default(),
+        bilinear: Default::default(),
+        a8: Default::default(),
+        rgb332_blue: Default::default(),
+        filter_select: Default::default(),
+        detail: Default::default(),
+        ncc_q2: Default::default(),
+        chain: Default::default(),
+        texture_cache: Default::default(),
+        ncc_update: Default::default(),
+        trilinear: Default::default(),
+        lod_zerofrac: Default::default(),
+        coord_rounding: Default::default(),
+        decal_invert: Default::default(),
+        persp_divide: Default::default(),
+    };
+    assert_eq!(TexelProfile::HARDWARE, d);
 }

@@ -1,0 +1,222 @@
+//! The models of the chip, chosen at compile time, and the one place that turns the
+//! model a board runs into a type.
+//!
+//! The pixel and texture stages are written once, against [`PixelModel`] and
+//! [`TexelModel`] (`pixelfx::model`). Each model here is a type whose switches are
+//! constants, so an instance of the pipeline for it holds only its own behaviour:
+//!
+//! * [`Hardware`]: the hardware model, our reading of the SST-1 ([`AccuracyProfile::HARDWARE`],
+//!   docs/accuracy.md). What programs run, what `voodoo replay` shows. It alone offers
+//!   the specialised walkers (`pixelfx::specialize`).
+//! * [`Mame`], [`DosboxStaging`], [`Box86`]: the three reference emulators
+//!   ([`Reference::profile`]), instruments for judging the hardware model against their
+//!   goldens; `--model vote` votes them.
+//! * [`Generic`]: the profile held at run time (`--profile FILE`), every switch tested
+//!   per pixel. For experiments; slow.
+//!
+//! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
+//! ([`with_model!`]): the match on the model runs once per bus access, never inside a
+//! stage.
+
+use pixelfx::{PixelModel, PixelProfile, TexelSource, Walker};
+use texelfx::{TexelModel, TexelProfile};
+
+use crate::reference::Reference;
+use crate::AccuracyProfile;
+
+use pixelfx::specialize::table_walker;
+
+/// A model of the whole chip set: the Pixelfx's switches and the Texelfx's.
+pub trait ChipModel: PixelModel + TexelModel {}
+
+impl<M: PixelModel + TexelModel> ChipModel for M {}
+
+/// Defines a model type whose switches are the constant profile `$profile`.
+macro_rules! fixed_model {
+    ($(#[$doc:meta])* $name:ident = $profile:expr $(, specialised = $spec:ident)?) => {
+        $(#[$doc])*
+        #[derive(Clone, Copy, Debug, Default)]
+        pub struct $name;
+
+        impl $name {
+            /// The model's switches.
+            pub const PROFILE: AccuracyProfile = $profile;
+        }
+
+        impl PixelModel for $name {
+            #[inline(always)]
+            fn pixel(_runtime: &PixelProfile) -> PixelProfile {
+                Self::PROFILE.pixel
+            }
+            $(
+                #[inline]
+                fn specialised<T: TexelSource>(
+                    key: pixelfx::specialize::RasterKey,
+                ) -> Option<Walker<T>> {
+                    $spec::<Self, T>(key)
+                }
+            )?
+        }
+
+        impl TexelModel for $name {
+            #[inline(always)]
+            fn texel(_runtime: &TexelProfile) -> TexelProfile {
+                Self::PROFILE.texel
+            }
+        }
+    };
+}
+
+fixed_model!(
+    /// The hardware model: our reading of the SST-1.
+    Hardware = AccuracyProfile::HARDWARE,
+    specialised = table_walker
+);
+fixed_model!(
+    /// MAME as a model.
+    Mame = Reference::Mame.profile()
+);
+fixed_model!(
+    /// DOSBox Staging as a model.
+    DosboxStaging = Reference::DosboxStaging.profile()
+);
+fixed_model!(
+    /// 86Box as a model.
+    Box86 = Reference::Box86.profile()
+);
+
+/// The generic model: the profile the chips hold at run time.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Generic;
+
+impl PixelModel for Generic {
+    #[inline(always)]
+    fn pixel(runtime: &PixelProfile) -> PixelProfile {
+        *runtime
+    }
+}
+
+impl TexelModel for Generic {
+    #[inline(always)]
+    fn texel(runtime: &TexelProfile) -> TexelProfile {
+        *runtime
+    }
+}
+
+/// The model a board runs, chosen at run time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Model {
+    /// [`Hardware`].
+    Hardware,
+    /// The model of one reference emulator ([`Mame`], [`DosboxStaging`], [`Box86`]).
+    Reference(Reference),
+    /// [`Generic`] with this profile.
+    Custom(AccuracyProfile),
+}
+
+impl Default for Model {
+    fn default() -> Self {
+        Model::Hardware
+    }
+}
+
+impl Model {
+    /// The model for `profile`: a fixed model if its profile is that one (the same
+    /// pixels, compiled for them), otherwise [`Model::Custom`].
+    pub fn from_profile(profile: AccuracyProfile) -> Model {
+        if profile == AccuracyProfile::HARDWARE {
+            return Model::Hardware;
+        }
+        Reference::ALL
+            .into_iter()
+            .find(|r| r.profile() == profile)
+            .map_or(Model::Custom(profile), Model::Reference)
+    }
+
+    /// The switches this model has.
+    pub fn profile(self) -> AccuracyProfile {
+        match self {
+            Model::Hardware => AccuracyProfile::HARDWARE,
+            Model::Reference(r) => r.profile(),
+            Model::Custom(p) => p,
+        }
+    }
+
+    /// The model type a board instantiates for this model.
+    pub(crate) fn kind(self) -> Kind {
+        match self {
+            Model::Hardware => Kind::Hardware,
+            Model::Reference(Reference::Mame) => Kind::Mame,
+            Model::Reference(Reference::DosboxStaging) => Kind::DosboxStaging,
+            Model::Reference(Reference::Box86) => Kind::Box86,
+            Model::Custom(_) => Kind::Generic,
+        }
+    }
+}
+
+/// Which model type runs: [`Model`] without the profile, for the dispatch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kind {
+    Hardware,
+    Mame,
+    DosboxStaging,
+    Box86,
+    Generic,
+}
+
+/// Evaluates `$body` with the type `$M` bound to the model type of `$kind` (a [`Kind`]).
+macro_rules! with_model {
+    ($kind:expr, $M:ident => $body:expr) => {
+        match $kind {
+            $crate::model::Kind::Hardware => {
+                type $M = $crate::model::Hardware;
+                $body
+            }
+            $crate::model::Kind::Mame => {
+                type $M = $crate::model::Mame;
+                $body
+            }
+            $crate::model::Kind::DosboxStaging => {
+                type $M = $crate::model::DosboxStaging;
+                $body
+            }
+            $crate::model::Kind::Box86 => {
+                type $M = $crate::model::Box86;
+                $body
+            }
+            $crate::model::Kind::Generic => {
+                type $M = $crate::model::Generic;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_model;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed_profiles_are_found_from_their_profile() {
+        assert_eq!(
+            Model::from_profile(AccuracyProfile::default()),
+            Model::Hardware
+        );
+        for r in Reference::ALL {
+            assert_eq!(Model::from_profile(r.profile()), Model::Reference(r));
+            assert_eq!(Model::Reference(r).profile(), r.profile());
+        }
+        let mut p = AccuracyProfile::HARDWARE;
+        p.texel.trilinear = texelfx::Trilinear::Ignored;
+        assert_eq!(Model::from_profile(p), Model::Custom(p));
+        assert_eq!(Model::Custom(p).kind(), Kind::Generic);
+        // The fixed models' switches are the profiles they stand for.
+        assert_eq!(Hardware::pixel(&p.pixel), AccuracyProfile::HARDWARE.pixel);
+        assert_eq!(
+            <Mame as TexelModel>::texel(&p.texel),
+            Reference::Mame.profile().texel
+        );
+        assert_eq!(Generic::texel(&p.texel), p.texel);
+    }
+}
