@@ -1,5 +1,5 @@
 //! Replay throughput: runs the two heavy conformance traces (or any trace whose name
-//! contains a command-line filter) on the fast pixel path and on the reference path and
+//! contains a command-line filter) on the fast pixel path and on the generic path and
 //! prints Mpixels/s (`fbiPixelsIn` per second), triangles/s and the speedup.
 //!
 //! ```text
@@ -51,7 +51,7 @@ fn thread_cpu_time() -> Option<Duration> {
 /// Replay `trace` once on a fresh board; returns the time taken and the counters.
 fn run_once(trace: &Trace, reference: bool) -> (Timing, Stats) {
     let mut board = Board::new(trace.board_config());
-    board.set_reference(reference);
+    board.set_generic_path(reference);
     let cpu0 = thread_cpu_time();
     let start = Instant::now();
     let dumps = execute(&trace.ops, &mut board, |_| {});

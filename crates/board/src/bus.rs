@@ -1,6 +1,7 @@
 //! Decoding of the PCI aperture (spec 4 and 5): register chip select and remapping,
 //! the LFB and texture regions, and PCI configuration space (spec 6).
 
+use crate::box86;
 use crate::chain::Chain;
 use crate::diagnostics::Diagnostic;
 use crate::model::{with_model, ChipModel};
@@ -81,11 +82,9 @@ impl Board {
         let init3 = sst1_regs::FbiInit3(self.fbi.reg(addr::FBI_INIT3));
         let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
         let profile = M::pixel(&self.fbi.profile());
-        // With ParamOrigin::RoundedVertex (86Box) the correction lasts this triangle only.
-        let saved = (cp.param_adjust() && !profile.param_origin.writes_back()).then(|| {
-            let starts: Vec<_> = self.tmus.iter().map(|t| t.start_registers()).collect();
-            (self.fbi.params, starts)
-        });
+        // ParamOrigin::RoundedVertex (86Box): the correction lasts this triangle only.
+        let saved = (cp.param_adjust() && !profile.param_origin.writes_back())
+            .then(|| box86::StartRegisters::save(&self.fbi, &self.tmus));
         if cp.param_adjust() {
             let (dx, dy) = self
                 .fbi
@@ -106,11 +105,8 @@ impl Board {
         } else {
             self.fbi.draw_triangle::<M, _>(&mut NoTexture);
         }
-        if let Some((params, starts)) = saved {
-            self.fbi.params = params;
-            for (t, start) in self.tmus.iter_mut().zip(starts) {
-                t.restore_start_registers(start);
-            }
+        if let Some(saved) = saved {
+            saved.restore(&mut self.fbi, &mut self.tmus);
         }
     }
 

@@ -10,6 +10,7 @@
 //! Commands run to completion inside the write that starts them: the emulated board is
 //! always idle when the host looks.
 
+mod box86;
 mod bus;
 mod chain;
 mod diagnostics;
@@ -150,15 +151,15 @@ impl Board {
         self.set_model(Model::from_profile(profile));
     }
 
-    /// Force the reference pixel path: every mode register is read at run time for every
+    /// Force the generic path: every mode register is read at run time for every
     /// pixel instead of using a walker specialised for the triangle's modes (see
     /// `pixelfx::specialize`), and every texel is decoded from texture memory instead of
     /// read from the TMUs' decoded-texel caches. Output and counters are identical either
     /// way; this is for differential testing and debugging. Off by default.
-    pub fn set_reference(&mut self, reference: bool) {
-        self.fbi.set_reference(reference);
+    pub fn set_generic_path(&mut self, on: bool) {
+        self.fbi.set_generic_path(on);
         for t in &mut self.tmus {
-            t.set_reference(reference);
+            t.set_generic_path(on);
         }
     }
 

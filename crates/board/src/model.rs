@@ -11,7 +11,7 @@
 //! * [`Mame`], [`DosboxStaging`], [`Box86`]: the three reference emulators
 //!   ([`Reference::profile`]), instruments for judging the hardware model against their
 //!   goldens; `--model vote` votes them.
-//! * [`Generic`]: the profile held at run time (`--profile FILE`), every switch tested
+//! * [`Custom`]: the profile held at run time (`--profile FILE`), every switch tested
 //!   per pixel. For experiments; slow.
 //!
 //! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
@@ -85,18 +85,20 @@ fixed_model!(
     Box86 = Reference::Box86.profile()
 );
 
-/// The generic model: the profile the chips hold at run time.
+/// The model of `--profile FILE`: the profile the chips hold at run time, every switch
+/// tested per pixel (`pixelfx::RuntimeProfile` and `texelfx::RuntimeProfile` for the
+/// whole chip set). For experiments; slow.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Generic;
+pub struct Custom;
 
-impl PixelModel for Generic {
+impl PixelModel for Custom {
     #[inline(always)]
     fn pixel(runtime: &PixelProfile) -> PixelProfile {
         *runtime
     }
 }
 
-impl TexelModel for Generic {
+impl TexelModel for Custom {
     #[inline(always)]
     fn texel(runtime: &TexelProfile) -> TexelProfile {
         *runtime
@@ -110,7 +112,7 @@ pub enum Model {
     Hardware,
     /// The model of one reference emulator ([`Mame`], [`DosboxStaging`], [`Box86`]).
     Reference(Reference),
-    /// [`Generic`] with this profile.
+    /// [`Custom`] with this profile (what `--profile FILE` runs).
     Custom(AccuracyProfile),
 }
 
@@ -149,7 +151,7 @@ impl Model {
             Model::Reference(Reference::Mame) => Kind::Mame,
             Model::Reference(Reference::DosboxStaging) => Kind::DosboxStaging,
             Model::Reference(Reference::Box86) => Kind::Box86,
-            Model::Custom(_) => Kind::Generic,
+            Model::Custom(_) => Kind::Custom,
         }
     }
 }
@@ -161,7 +163,7 @@ pub(crate) enum Kind {
     Mame,
     DosboxStaging,
     Box86,
-    Generic,
+    Custom,
 }
 
 /// Evaluates `$body` with the type `$M` bound to the model type of `$kind` (a [`Kind`]).
@@ -184,8 +186,8 @@ macro_rules! with_model {
                 type $M = $crate::model::Box86;
                 $body
             }
-            $crate::model::Kind::Generic => {
-                type $M = $crate::model::Generic;
+            $crate::model::Kind::Custom => {
+                type $M = $crate::model::Custom;
                 $body
             }
         }
@@ -210,13 +212,13 @@ mod tests {
         let mut p = AccuracyProfile::HARDWARE;
         p.texel.trilinear = texelfx::Trilinear::Ignored;
         assert_eq!(Model::from_profile(p), Model::Custom(p));
-        assert_eq!(Model::Custom(p).kind(), Kind::Generic);
+        assert_eq!(Model::Custom(p).kind(), Kind::Custom);
         // The fixed models' switches are the profiles they stand for.
         assert_eq!(Hardware::pixel(&p.pixel), AccuracyProfile::HARDWARE.pixel);
         assert_eq!(
             <Mame as TexelModel>::texel(&p.texel),
             Reference::Mame.profile().texel
         );
-        assert_eq!(Generic::texel(&p.texel), p.texel);
+        assert_eq!(Custom::texel(&p.texel), p.texel);
     }
 }

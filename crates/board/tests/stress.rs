@@ -11,7 +11,7 @@
 //!   texture downloads under random `textureMode`/`tLOD`, reads of every register).
 //!   Each stream must run without a panic, give the same buffers, counters, diagnostics
 //!   and read values when replayed, and give the same again on the reference pixel path
-//!   (`Board::set_reference(true)`).
+//!   (`Board::set_generic_path(true)`).
 //! * Iterators that leave their fixed-point range (spec 5.3-5.14: colour 12.12, Z 20.12,
 //!   W 2.30): exact pixels derived by hand from the SST-1 pseudo-clamp, on both paths.
 //!
@@ -560,7 +560,7 @@ fn counters(s: &Stats) -> [u64; 2] {
 /// LFB writes, which ignore clipping unless they use the pipeline.
 fn run(config: BoardConfig, ops: &[Op], reference: bool) -> Outcome {
     let mut board = Board::new(config);
-    board.set_reference(reference);
+    board.set_generic_path(reference);
     init(&mut board);
     let mut reads: u64 = 0xcbf2_9ce4_8422_2325;
     let mut totals = [0u64; 2];
@@ -627,7 +627,7 @@ fn describe(a: &Outcome, b: &Outcome) -> String {
     "no difference".to_owned()
 }
 
-/// Runs the stream of `seed` three times: fast path twice (determinism), reference path
+/// Runs the stream of `seed` three times: fast path twice (determinism), generic path
 /// once (the specialised walkers must not change anything). Returns the outcome.
 /// 25 000 steps are about 560 000 bus operations (half of them the register sweeps of
 /// `read_all`); a run takes about 0.2 s in release.
@@ -643,7 +643,7 @@ fn check_seed(seed: u64, config: BoardConfig, steps: usize) -> Outcome {
     let reference = run(config, &ops, true);
     assert!(
         first == reference,
-        "seed {seed}: reference path differs from fast path: {}",
+        "seed {seed}: generic path differs from fast path: {}",
         describe(&first, &reference)
     );
     first
@@ -741,7 +741,7 @@ const FBZ_WBUFFER: u32 = 1 << 3;
 /// `start + x * d/dX` (spec 5.15). Row 0 covers `0..width * 15 / 16`, clipped to 640.
 fn edge_program(reference: bool, fbz: u32, width: u32, params: &[(u32, u32, u32)]) -> Board {
     let mut b = Board::new(BoardConfig::default());
-    b.set_reference(reference);
+    b.set_generic_path(reference);
     init(&mut b);
     b.write32(addr::FBZ_MODE, fbz);
     b.write32(addr::FBZ_COLOR_PATH, 0);

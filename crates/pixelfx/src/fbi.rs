@@ -40,7 +40,7 @@ pub struct Fbi {
     pub fog_table: FogTable,
     /// Statistics counters.
     pub stats: Stats,
-    /// The disputed-behaviour switches held at run time: what the generic model
+    /// The disputed-behaviour switches held at run time: what the run-time-profile model
     /// ([`crate::model::RuntimeProfile`]) reads, and the fixed models' own profile (the
     /// board keeps the two in step).
     profile: PixelProfile,
@@ -49,7 +49,7 @@ pub struct Fbi {
     /// Toggled on each status read so that drivers waiting for retrace make progress.
     vretrace: bool,
     /// Force the reference (unspecialised) triangle walker; see [`Fbi::set_reference`].
-    pub(crate) reference: bool,
+    pub(crate) generic_path: bool,
 }
 
 impl Fbi {
@@ -65,7 +65,7 @@ impl Fbi {
             dither: Dither::new(profile.dither_2x2),
             profile,
             vretrace: false,
-            reference: false,
+            generic_path: false,
         }
     }
 

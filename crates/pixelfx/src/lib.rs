@@ -6,6 +6,7 @@
 
 pub mod alpha_test;
 pub mod blend;
+pub mod box86;
 pub mod color_path;
 pub mod depth;
 pub mod fastfill;

@@ -7,7 +7,7 @@
 //! the instance once per register write. A model whose switches are constants (the
 //! hardware model, and each reference emulator's) returns a constant profile, so every
 //! test of a switch folds away and the instance holds only the behaviour it models; the
-//! generic model returns the profile held at run time (`--profile FILE`, for
+//! run-time-profile model returns the profile held at run time (`--profile FILE`, for
 //! experiments), and may be slow.
 //!
 //! The same seam selects the specialised walkers ([`PixelModel::specialised`]): a model
@@ -39,7 +39,7 @@ pub trait PixelModel: 'static {
     }
 }
 
-/// The generic model: the profile held at run time, every switch tested per pixel. For
+/// The run-time-profile model: the profile held at run time, every switch tested per pixel. For
 /// experiments and for tests of one crate alone.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RuntimeProfile;

@@ -119,7 +119,7 @@ pub enum Source {
 
 impl Fbi {
     /// Run one pixel through the pipeline, reading every mode register at run time (the
-    /// reference path). See [`Fbi::shade`] for the arguments.
+    /// generic path). See [`Fbi::shade`] for the arguments.
     #[inline]
     pub(crate) fn shade_pixel<M: PixelModel>(
         &mut self,

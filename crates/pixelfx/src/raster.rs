@@ -9,7 +9,7 @@ use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::StippleRotate;
 use crate::specialize::{value, Known, RasterKey, LIVE};
-use crate::{setup, stipple};
+use crate::{box86, setup};
 
 /// What the TMU chain gives the FBI for one pixel.
 pub trait TexelSource {
@@ -39,7 +39,7 @@ impl Fbi {
     /// Draw the triangle held in the parameter registers (the `triangleCMD` command).
     /// The caller has applied subpixel correction if `fbzColorPath` asks for it.
     ///
-    /// Unless [`Fbi::set_reference`] forced the reference path, a walker specialised for
+    /// Unless [`Fbi::set_reference`] forced the generic path, a walker specialised for
     /// the triangle's mode registers is used when [`crate::specialize`] has one.
     ///
     /// `M` is the model of the chip ([`crate::model`]); the caller guarantees that the
@@ -51,7 +51,7 @@ impl Fbi {
             return;
         };
         let st = DrawState::capture::<M>(self, dest);
-        let specialised = if self.reference {
+        let specialised = if self.generic_path {
             None
         } else {
             M::specialised::<T>(RasterKey::of_state(&st))
@@ -60,17 +60,17 @@ impl Fbi {
         walk(self, &st, tex);
     }
 
-    /// Force the reference path (every mode register read at run time for every pixel)
+    /// Force the generic path (every mode register read at run time for every pixel)
     /// instead of the specialised walkers. Both give identical pixels and counters; the
-    /// switch exists to prove that (`crates/board/tests/reference_vs_fast.rs`) and to
+    /// switch exists to prove that (`crates/board/tests/generic_vs_fast.rs`) and to
     /// debug the specialisation.
-    pub fn set_reference(&mut self, reference: bool) {
-        self.reference = reference;
+    pub fn set_generic_path(&mut self, on: bool) {
+        self.generic_path = on;
     }
 
-    /// Whether the reference path is forced.
-    pub fn reference(&self) -> bool {
-        self.reference
+    /// Whether the generic path is forced.
+    pub fn generic_path(&self) -> bool {
+        self.generic_path
     }
 
     /// Walk the triangle's spans and shade its pixels with the bits of `fbzColorPath`
@@ -106,9 +106,7 @@ impl Fbi {
         let per_triangle = profile.stipple_rotate == StippleRotate::PerTriangle
             && mode.enable_stipple()
             && !mode.enable_stipple_pattern();
-        // StippleRotate::PerTriangle: the triangle's copy, and each row's values.
-        let mut carried = st.stipple;
-        let mut row_stipple: Vec<u32> = Vec::new();
+        let mut copy = per_triangle.then(|| box86::StippleCopy::new(st.stipple));
         for span in setup::spans(&params, profile.edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);
             // Every pixel the walker visits counts as "in" (spec 5.31), clipped or not.
@@ -130,22 +128,12 @@ impl Fbi {
             let mut stipple = st.stipple;
             let prow = profile.pattern_row.row(span.y, scry);
             tex.begin_span(start - ax, dy, (stop - start) as usize);
-            if per_triangle {
-                // Each pixel's stepped copy, in walk order (right to left when
-                // triangleCMD bit 31 says so), rotated back by one because the stipple
-                // test rotates the value it is given left by one before testing bit 31.
-                row_stipple.clear();
-                for _ in start..stop {
-                    carried = stipple::box86_step(carried);
-                    row_stipple.push(carried.rotate_right(1));
-                }
-                if params.right_to_left {
-                    row_stipple.reverse();
-                }
+            if let Some(c) = &mut copy {
+                c.step_row(start, stop, params.right_to_left);
             }
             for x in start..stop {
-                if per_triangle {
-                    stipple = row_stipple[(x - start) as usize];
+                if let Some(c) = &copy {
+                    stipple = c.at((x - start) as usize);
                 }
                 let r = self.shade::<M, CP, AM, FM, ZM>(
                     st,

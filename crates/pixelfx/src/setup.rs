@@ -11,8 +11,9 @@
 //! the same operations in the same order, so the same spans. 86Box walks edges in fixed
 //! point instead and differs by a few edge pixels per scene; the README of the
 //! conformance set lists this as a known disagreement, and the majority is followed.
-//! [`EdgeRounding::Box86Fixed`] reproduces 86Box's walk (`voodoo_triangle`,
-//! `voodoo_half_triangle`) for its reference profile.
+//! [`EdgeRounding::Box86Fixed`] selects 86Box's walk (`voodoo_triangle`,
+//! `voodoo_half_triangle`) for its model; it lives with 86Box's other structural
+//! behaviours in [`crate::box86`].
 
 use crate::params::TriangleParams;
 
@@ -62,50 +63,31 @@ pub struct Span {
 }
 
 /// The spans of the triangle given by the vertex registers, top to bottom.
-pub fn spans(p: &TriangleParams, rounding: EdgeRounding) -> Box<dyn Iterator<Item = Span>> {
+#[inline]
+pub fn spans(p: &TriangleParams, rounding: EdgeRounding) -> impl Iterator<Item = Span> {
     match rounding {
-        EdgeRounding::Box86Fixed => Box::new(spans_fixed(p)),
-        _ => Box::new(spans_float(p, rounding)),
+        EdgeRounding::Box86Fixed => Walk::Fixed(crate::box86::spans(p)),
+        _ => Walk::Float(spans_float(p, rounding)),
     }
 }
 
-/// [`EdgeRounding::Box86Fixed`]'s walk. Source: 86Box `voodoo_triangle` (slopes, row
-/// range) and `voodoo_half_triangle` (crossings, `+ 0x7000`, the empty-row test).
-fn spans_fixed(p: &TriangleParams) -> impl Iterator<Item = Span> {
-    let [ax, ay, bx, by, cx, cy] = [p.ax, p.ay, p.bx, p.by, p.cx, p.cy].map(i32::from);
-    // 16.16 x per pixel of y, from 12.4 coordinates; 64-bit divide, truncated to 32 bits.
-    let slope = |x0: i32, y0: i32, x1: i32, y1: i32| {
-        if y1 == y0 {
-            0
-        } else {
-            (((i64::from(x1) << 12) - (i64::from(x0) << 12)) << 4).wrapping_div(i64::from(y1 - y0))
-                as i32
+/// One of the two edge walks (an enum rather than a boxed iterator: no allocation per
+/// triangle, and a model with a fixed [`EdgeRounding`] keeps only its own walk).
+enum Walk<F, X> {
+    Float(F),
+    Fixed(X),
+}
+
+impl<F: Iterator<Item = Span>, X: Iterator<Item = Span>> Iterator for Walk<F, X> {
+    type Item = Span;
+
+    #[inline]
+    fn next(&mut self) -> Option<Span> {
+        match self {
+            Walk::Float(f) => f.next(),
+            Walk::Fixed(x) => x.next(),
         }
-    };
-    let (d_ab, d_ac, d_bc) = (
-        slope(ax, ay, bx, by),
-        slope(ax, ay, cx, cy),
-        slope(bx, by, cx, cy),
-    );
-    let right_to_left = p.right_to_left;
-    let cross = |x0: i32, d: i32, dy: i32| (x0 << 12).wrapping_add(d.wrapping_mul(dy) >> 4);
-    let pixel = |x: i32| x.wrapping_add(0x7000) >> 16;
-    ((ay + 7) >> 4..(cy + 7) >> 4).filter_map(move |y| {
-        let row = (y << 4) + 8;
-        let long = cross(ax, d_ac, row - ay);
-        let short = if row < by {
-            cross(ax, d_ab, row - ay)
-        } else {
-            cross(bx, d_bc, row - by)
-        };
-        let (left, right) = if right_to_left {
-            (short, long)
-        } else {
-            (long, short)
-        };
-        let (start, stop) = (pixel(left), pixel(right));
-        (start < stop).then_some(Span { y, start, stop })
-    })
+    }
 }
 
 /// The MAME / DOSBox Staging walk in single-precision floating point.

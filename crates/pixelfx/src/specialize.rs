@@ -5,7 +5,7 @@
 //! [`crate::pipeline`] is written once against `fbzColorPath`, `alphaMode`, `fogMode`
 //! and `fbzMode`. Each of the four is a const generic parameter of the walker
 //! ([`Known`]: a mask of the bits known at compile time and their values). The
-//! instantiation that knows nothing ([`LIVE`] x 4) is the reference path; one that
+//! instantiation that knows nothing ([`LIVE`] x 4) is the generic path; one that
 //! knows a register's bits is the same code after constant folding: bit tests vanish,
 //! the combine units' input selections become fixed and disabled stages are dropped.
 //!
@@ -14,9 +14,9 @@
 //! runs). Only the hardware model offers the table ([`PixelModel::specialised`]). A key holds every
 //! bit the FBI stores (only `alphaMode.alpha_ref` is left out and read at run time), so a
 //! specialised walker computes with exactly the values the reference reads.
-//! `crates/board/tests/reference_vs_fast.rs` replays every trace both ways and requires
+//! `crates/board/tests/generic_vs_fast.rs` replays every trace both ways and requires
 //! identical buffers and counters; `Board::set_reference` / [`Fbi::set_reference`]
-//! force the reference walker.
+//! force the generic walker.
 //!
 //! To find candidates for the table: `cargo bench -p sst1-board --bench replay --
 //! --dump-raster-stats [TRACE-FILTER...]` prints the keys of the replayed triangles in
@@ -34,7 +34,7 @@ use crate::raster::TexelSource;
 /// time. Built with `known_bits`, applied with `value`.
 pub type Known = u64;
 
-/// Nothing known: read the whole register at run time (the reference path).
+/// Nothing known: read the whole register at run time (the generic path).
 pub const LIVE: Known = 0;
 
 /// The bits of each register that an exact key covers. The FBI masks unimplemented bits

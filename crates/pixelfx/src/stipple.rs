@@ -20,13 +20,6 @@ pub fn test(pattern_mode: bool, rotating: &mut u32, reg: u32, x: i32, y: i32) ->
     }
 }
 
-/// 86Box's rotate-mode step (`StippleRotate::PerTriangle`): `(s << 1) | (s >> 31)` with
-/// `s` a signed 32-bit `int`, so the right shift copies bit 31 into every bit.
-#[inline]
-pub fn box86_step(s: u32) -> u32 {
-    (s << 1) | ((s as i32) >> 31) as u32
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -39,13 +32,6 @@ mod tests {
         assert!(!test(true, &mut r, 1 << 7, 1, 0));
         assert!(test(true, &mut r, 1, 7, 0));
         assert!(test(true, &mut r, 1 << 31, 8, 3));
-    }
-
-    #[test]
-    fn box86_step_fills_with_ones_after_bit_31() {
-        assert_eq!(box86_step(0x4000_0001), 0x8000_0002);
-        assert_eq!(box86_step(0x8000_0002), 0xffff_ffff);
-        assert_eq!(box86_step(0xffff_ffff), 0xffff_ffff);
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! every pixel (and for every one of the four bilinear neighbours) costs more than reading
 //! a decoded copy. A level is decoded with the same fetch the uncached path uses
 //! ([`crate::Tmu::set_reference`] turns the cache off), so both give identical texels:
-//! `crates/board/tests/reference_vs_fast.rs` replays every trace both ways.
+//! `crates/board/tests/generic_vs_fast.rs` replays every trace both ways.
 //!
 //! A cached level is dropped exactly when something it was decoded from changes:
 //! - a texture download that writes a byte inside the level's memory span;
@@ -58,7 +58,7 @@ impl TexelCache {
     }
 
     /// Exchanges the levels and their valid bits with `levels` and `valid` (how the 86Box
-    /// texture cache, `crate::box86_cache`, lends an entry for a triangle).
+    /// texture cache, `crate::box86`, lends an entry for a triangle).
     pub fn swap_storage(&mut self, levels: &mut [Vec<u32>; 9], valid: &mut u16) {
         std::mem::swap(&mut self.levels, levels);
         std::mem::swap(&mut self.valid, valid);

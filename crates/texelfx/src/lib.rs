@@ -21,7 +21,7 @@
 //!
 //! Where the reference emulators disagree, [`TexelProfile`] selects the behaviour.
 
-mod box86_cache;
+mod box86;
 mod cache;
 mod download;
 mod format;
@@ -35,7 +35,7 @@ use sample::SpanRecip;
 pub use sst1_chain::DetailRule;
 use sst1_chain::{detail_factor, Factors, TextureCombine};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
-use sst1_regs::{addr, Rgba, TLod, TextureMode};
+use sst1_regs::{addr, Rgba, TextureMode};
 
 /// Signed fixed point with 14 integer and 18 fraction bits (`startS`, `dSdX`, ...).
 pub type Fx14_18 = i32;
@@ -172,7 +172,7 @@ pub enum TextureCacheKey {
     Exact,
     /// 86Box: decoded textures kept by base address, `tLOD` and palette checksum only, so
     /// a new format or NCC table over the same memory reads the old decode until a
-    /// download writes into it (see `box86_cache`).
+    /// download writes into it (see module `box86`).
     Box86,
 }
 
@@ -367,7 +367,7 @@ pub trait TexelModel: 'static {
     fn texel(runtime: &TexelProfile) -> TexelProfile;
 }
 
-/// The generic model: the profile held at run time, every switch tested per texel. For
+/// The run-time-profile model: the profile held at run time, every switch tested per texel. For
 /// experiments and for tests of this crate alone.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RuntimeProfile;
@@ -398,7 +398,7 @@ pub struct Tmu {
     ram: Vec<u8>,
     /// Memory size minus 1 (a power of two minus 1).
     ram_mask: u32,
-    /// Behaviour switches held at run time: what the generic model ([`RuntimeProfile`])
+    /// Behaviour switches held at run time: what the run-time-profile model ([`RuntimeProfile`])
     /// reads, and the fixed models' own profile (the board keeps the two in step).
     profile: TexelProfile,
     /// `textureMode`.
@@ -444,8 +444,8 @@ pub struct Tmu {
     /// Decoded levels of the bound texture.
     cache: TexelCache,
     /// 86Box's texture cache ([`TextureCacheKey::Box86`]).
-    box86: box86_cache::Box86Cache,
-    /// Sample through `cache` (off: decode every texel from memory, the reference path).
+    box86: box86::Box86Cache,
+    /// Sample through `cache` (off: decode every texel from memory, the generic path).
     cached: bool,
     /// Perspective factors of the span being shaded.
     span: SpanRecip,
@@ -531,9 +531,9 @@ impl Tmu {
 
     /// Decode every texel from texture memory for every pixel instead of reading the
     /// decoded-texel cache (module `cache`). Output is identical either way; this is the
-    /// reference path for differential tests. Off by default.
-    pub fn set_reference(&mut self, reference: bool) {
-        self.cached = !reference;
+    /// generic path for differential tests. Off by default.
+    pub fn set_generic_path(&mut self, on: bool) {
+        self.cached = !on;
         self.cache.clear();
     }
 
@@ -632,7 +632,7 @@ impl Tmu {
 
     /// The FBI is about to shade `len` pixels from offset `(dx, dy)` (as in [`Tmu::texel`])
     /// rightwards: computes their perspective factors in one loop (see `SpanRecip`).
-    /// Optional; texels are the same without it. The reference path
+    /// Optional; texels are the same without it. The generic path
     /// ([`Tmu::set_reference`]) skips it.
     pub fn begin_span<M: TexelModel>(&mut self, dx: i32, dy: i32, len: usize) {
         let profile = M::texel(&self.profile);
@@ -764,78 +764,6 @@ impl Tmu {
         self.decode = decode;
         *self.texel_lut = lut;
         self.lut_stale = false;
-    }
-
-    /// [`TextureCacheKey::Box86`]: lends the cached decode of the bound texture to `cache`
-    /// for this triangle, decoding it first (every level, with the state in force) if no
-    /// entry has its key. Source: 86Box `voodoo_use_texture`.
-    fn box86_bind(&mut self) {
-        self.box86_return();
-        if self.lut_stale {
-            self.rebuild_lut();
-        }
-        let format = TextureMode(self.texture_mode).format() as u32;
-        let palette = if matches!(format, 5 | 6 | 14) {
-            // 86Box XORs the stored 0xffRRGGBB words; the 256 0xff bytes cancel.
-            self.palette.iter().fold(0, |x, &[r, g, b]| {
-                x ^ (u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b))
-            })
-        } else {
-            0
-        };
-        let key = box86_cache::Key {
-            base: self.tex_base[0],
-            t_lod: self.t_lod & 0x00f0_0fff,
-            palette,
-        };
-        let i = match self.box86.find(key) {
-            Some(i) => i,
-            None => {
-                self.cache.clear();
-                let t_lod = TLod(self.t_lod);
-                let (lo, hi) = (
-                    (t_lod.lodmin() >> 2) as usize,
-                    (t_lod.lodmax() >> 2) as usize,
-                );
-                let (mut first, mut last) = (u32::MAX, 0);
-                for lod in 0..9 {
-                    if (self.layout.lodmask >> lod) & 1 == 0 {
-                        continue;
-                    }
-                    self.decode_level(lod);
-                    if (lo..=hi.min(8)).contains(&lod) {
-                        let texels = (self.layout.smax(lod) + 1) * (self.layout.tmax(lod) + 1);
-                        let base = self.layout.lod_base[lod];
-                        first = first.min(base);
-                        last = last.max(base + (texels << self.layout.bpp_shift) - 1);
-                    }
-                }
-                let mut entry = box86_cache::Entry {
-                    key,
-                    levels: Default::default(),
-                    valid: 0,
-                    span: if first <= last {
-                        box86_cache::page_span(first, last)
-                    } else {
-                        (0, 0)
-                    },
-                };
-                self.cache.swap_storage(&mut entry.levels, &mut entry.valid);
-                self.box86.insert(entry)
-            }
-        };
-        let (levels, valid) = self.box86.storage(i);
-        self.cache.swap_storage(levels, valid);
-        self.box86.lent = Some(i);
-    }
-
-    /// Takes a lent 86Box entry back from `cache` (before any register or texture write).
-    fn box86_return(&mut self) {
-        if let Some(i) = self.box86.lent.take() {
-            let (levels, valid) = self.box86.storage(i);
-            self.cache.swap_storage(levels, valid);
-            self.cache.clear();
-        }
     }
 
     /// A write to word `word` (0..12) of NCC table `table` (0, 1), or to the palette.

@@ -1,7 +1,7 @@
 //! End-to-end tests through the public `Tmu` interface.
 
 use super::*;
-/// These tests set profiles at run time: the generic model reads them.
+/// These tests set profiles at run time: the run-time-profile model reads them.
 use crate::RuntimeProfile as R;
 
 /// textureMode combine fields that output the local texel unchanged (Glide's "decal").
@@ -665,7 +665,7 @@ fn texel_cache_sees_every_write_and_keeps_what_is_unchanged() {
     assert_eq!(tmu.texel::<R>(-1, 0, 0, 0, BLACK), rgba([0x88, 0, 0, 0xff]));
 }
 
-/// Palette writes reach P8 texels already decoded; the cached and the reference path
+/// Palette writes reach P8 texels already decoded; the cached and the generic path
 /// sample every texel of a level alike.
 #[test]
 fn texel_cache_palette_and_reference_path_agree() {
@@ -683,7 +683,7 @@ fn texel_cache_palette_and_reference_path_agree() {
 
     let mut cached = rgb565_8x8(BILINEAR);
     let mut reference = rgb565_8x8(BILINEAR);
-    reference.set_reference(true);
+    reference.set_generic_path(true);
     for dy in -9..9 {
         for dx in -9..9 {
             assert_eq!(

@@ -1,12 +1,12 @@
 //! Differential test of the specialised pixel path (`pixelfx::specialize`) against the
-//! reference path (`Board::set_reference(true)`): every conformance, glide-sdk and example
+//! generic path (`Board::set_generic_path(true)`): every conformance, glide-sdk and example
 //! trace is replayed both ways with the default profile, and the conformance and glide-sdk
 //! ones again with each reference emulator's profile; every dump the trace takes, the final
 //! front, back and aux buffers and the statistics counters must be bit-identical.
 //!
 //! `perf_tex_heavy` (about 40 s for both replays in release, texture-sampling bound)
 //! runs only in the ignored test: `cargo test -p sst1-board --release --test
-//! reference_vs_fast -- --ignored`.
+//! generic_vs_fast -- --ignored`.
 
 use std::path::{Path, PathBuf};
 
@@ -33,7 +33,7 @@ fn replay(path: &Path, profile: AccuracyProfile, reference: bool) -> Outcome {
     let trace = load_trace(path).unwrap_or_else(|e| panic!("{e}"));
     let mut board = Board::new(trace.board_config());
     board.set_profile(profile);
-    board.set_reference(reference);
+    board.set_generic_path(reference);
     let mut buffers: Vec<Buffer> = execute(&trace.ops, &mut board, |_| {})
         .into_iter()
         .map(|d| Buffer {

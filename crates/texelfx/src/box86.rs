@@ -1,4 +1,5 @@
-//! 86Box's texture cache, as a behaviour ([`crate::TextureCacheKey::Box86`]).
+//! 86Box's structural behaviours of the Texelfx: its texture cache, as a behaviour
+//! ([`crate::TextureCacheKey::Box86`]). (Its chain shortcuts are `sst1-chain`'s.)
 //!
 //! 86Box decodes a texture when a triangle first uses it and keeps the decoded texels in a
 //! 64-entry cache keyed by the base address, `tLOD & 0xf00fff` and, for the palette
@@ -11,6 +12,84 @@
 //! Here the entry bound by a triangle is lent to the TMU's decoded-texel cache
 //! ([`crate::cache::TexelCache`]) for the triangle, and taken back before the next register
 //! or texture write.
+
+use sst1_regs::{TLod, TextureMode};
+
+use crate::Tmu;
+
+impl Tmu {
+    /// [`TextureCacheKey::Box86`]: lends the cached decode of the bound texture to `cache`
+    /// for this triangle, decoding it first (every level, with the state in force) if no
+    /// entry has its key. Source: 86Box `voodoo_use_texture`.
+    pub(crate) fn box86_bind(&mut self) {
+        self.box86_return();
+        if self.lut_stale {
+            self.rebuild_lut();
+        }
+        let format = TextureMode(self.texture_mode).format() as u32;
+        let palette = if matches!(format, 5 | 6 | 14) {
+            // 86Box XORs the stored 0xffRRGGBB words; the 256 0xff bytes cancel.
+            self.palette.iter().fold(0, |x, &[r, g, b]| {
+                x ^ (u32::from(r) << 16 | u32::from(g) << 8 | u32::from(b))
+            })
+        } else {
+            0
+        };
+        let key = Key {
+            base: self.tex_base[0],
+            t_lod: self.t_lod & 0x00f0_0fff,
+            palette,
+        };
+        let i = match self.box86.find(key) {
+            Some(i) => i,
+            None => {
+                self.cache.clear();
+                let t_lod = TLod(self.t_lod);
+                let (lo, hi) = (
+                    (t_lod.lodmin() >> 2) as usize,
+                    (t_lod.lodmax() >> 2) as usize,
+                );
+                let (mut first, mut last) = (u32::MAX, 0);
+                for lod in 0..9 {
+                    if (self.layout.lodmask >> lod) & 1 == 0 {
+                        continue;
+                    }
+                    self.decode_level(lod);
+                    if (lo..=hi.min(8)).contains(&lod) {
+                        let texels = (self.layout.smax(lod) + 1) * (self.layout.tmax(lod) + 1);
+                        let base = self.layout.lod_base[lod];
+                        first = first.min(base);
+                        last = last.max(base + (texels << self.layout.bpp_shift) - 1);
+                    }
+                }
+                let mut entry = Entry {
+                    key,
+                    levels: Default::default(),
+                    valid: 0,
+                    span: if first <= last {
+                        page_span(first, last)
+                    } else {
+                        (0, 0)
+                    },
+                };
+                self.cache.swap_storage(&mut entry.levels, &mut entry.valid);
+                self.box86.insert(entry)
+            }
+        };
+        let (levels, valid) = self.box86.storage(i);
+        self.cache.swap_storage(levels, valid);
+        self.box86.lent = Some(i);
+    }
+
+    /// Takes a lent 86Box entry back from `cache` (before any register or texture write).
+    pub(crate) fn box86_return(&mut self) {
+        if let Some(i) = self.box86.lent.take() {
+            let (levels, valid) = self.box86.storage(i);
+            self.cache.swap_storage(levels, valid);
+            self.cache.clear();
+        }
+    }
+}
 
 /// The key 86Box finds a decoded texture by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
