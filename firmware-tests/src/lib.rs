@@ -16,7 +16,7 @@
 //! from [`sst1_regs::addr`]; [`bits`] names the mode-register bits the programs set.
 
 use sst1_board::{AccuracyProfile, Board, BoardConfig};
-use sst1_regs::{addr, RegisterBus};
+use sst1_regs::{addr, ClipLeftRight, ClipLowYHighY, LfbMode, LfbReadBuffer, RegisterBus, Status};
 
 /// Start of the linear frame buffer in the memory aperture (spec 4).
 pub const LFB_BASE: u32 = 0x40_0000;
@@ -50,11 +50,12 @@ pub enum Buffer {
 impl Buffer {
     /// The `lfbMode` read-buffer-select field value, in place (bits 7:6).
     pub const fn read_select(self) -> u32 {
-        match self {
-            Buffer::Front => 0 << 6,
-            Buffer::Back => 1 << 6,
-            Buffer::Aux => 2 << 6,
-        }
+        let b = match self {
+            Buffer::Front => LfbReadBuffer::Front,
+            Buffer::Back => LfbReadBuffer::Back,
+            Buffer::Aux => LfbReadBuffer::Aux,
+        };
+        LfbMode(0).with_read_buffer_select(b).0
     }
 }
 
@@ -140,107 +141,140 @@ impl Port for Emulator {
 }
 
 /// Bits of the mode registers that the programs set, named after the spec's fields.
+///
+/// Each value is built with the typed views' `with_*` setters from `sst1_regs` (the one
+/// place the bit positions are declared), so a program reads as the spec's field names
+/// and cannot disagree with the emulator's decoding.
 pub mod bits {
+    use sst1_regs::{
+        AlphaMode, BlendFactor, ColorBuffer, CompareFunction, FbzColorPath, FbzMode, FogMode,
+        FogZa, LfbMode, LfbWriteFormat, RgbaLanes,
+    };
+
     /// `fbzMode` (spec 5.19).
     pub mod fbz {
+        use super::*;
+
+        const M: FbzMode = FbzMode(0);
         /// Bit 0: enable the clip rectangle.
-        pub const CLIP: u32 = 1 << 0;
+        pub const CLIP: u32 = M.with_enable_clipping(true).0;
         /// Bit 1: enable chroma-keying.
-        pub const CHROMAKEY: u32 = 1 << 1;
+        pub const CHROMAKEY: u32 = M.with_enable_chromakey(true).0;
         /// Bit 3: W instead of Z for depth buffering.
-        pub const WBUFFER: u32 = 1 << 3;
+        pub const WBUFFER: u32 = M.with_wbuffer_select(true).0;
         /// Bit 4: enable depth buffering.
-        pub const DEPTH: u32 = 1 << 4;
+        pub const DEPTH: u32 = M.with_enable_depthbuffer(true).0;
         /// Bits 7:5: depth function `f` (0 never .. 7 always, spec 5.19.1).
         pub const fn depth_function(f: u32) -> u32 {
-            (f & 7) << 5
+            M.with_depth_function(CompareFunction::from_bits(f)).0
         }
         /// Bit 8: enable dithering.
-        pub const DITHER: u32 = 1 << 8;
+        pub const DITHER: u32 = M.with_enable_dithering(true).0;
         /// Bit 9: RGB buffer write mask.
-        pub const RGB_WRITE: u32 = 1 << 9;
+        pub const RGB_WRITE: u32 = M.with_rgb_buffer_mask(true).0;
         /// Bit 10: depth/alpha buffer write mask.
-        pub const AUX_WRITE: u32 = 1 << 10;
+        pub const AUX_WRITE: u32 = M.with_aux_buffer_mask(true).0;
         /// Bit 11: 2x2 instead of 4x4 ordered dither.
-        pub const DITHER_2X2: u32 = 1 << 11;
+        pub const DITHER_2X2: u32 = M.with_dither_2x2(true).0;
         /// Bit 13: alpha-channel mask.
-        pub const ALPHA_MASK: u32 = 1 << 13;
+        pub const ALPHA_MASK: u32 = M.with_enable_alpha_mask(true).0;
         /// Bits 15:14 = 1: draw into the back buffer.
-        pub const DRAW_BACK: u32 = 1 << 14;
+        pub const DRAW_BACK: u32 = M.with_draw_buffer(ColorBuffer::Back).0;
         /// Bit 16: depth bias by `zaColor[15:0]`.
-        pub const DEPTH_BIAS: u32 = 1 << 16;
+        pub const DEPTH_BIAS: u32 = M.with_enable_depth_bias(true).0;
         /// Bit 17: Y origin at the bottom of the screen.
-        pub const Y_ORIGIN: u32 = 1 << 17;
+        pub const Y_ORIGIN: u32 = M.with_y_origin(true).0;
         /// Bit 18: the aux buffer holds alpha.
-        pub const ALPHA_PLANES: u32 = 1 << 18;
+        pub const ALPHA_PLANES: u32 = M.with_enable_alpha_planes(true).0;
         /// Bit 20: compare `zaColor[15:0]` instead of the pixel's depth.
-        pub const DEPTH_SOURCE_COMPARE: u32 = 1 << 20;
+        pub const DEPTH_SOURCE_COMPARE: u32 = M.with_depth_source_compare(true).0;
     }
 
     /// `lfbMode` (spec 5.20).
     pub mod lfb {
+        use super::*;
+
+        const L: LfbMode = LfbMode(0);
         /// Bits 3:0: write format `f`.
         pub const fn format(f: u32) -> u32 {
-            f & 0xf
+            L.with_write_format(LfbWriteFormat::from_bits(f)).0
         }
         /// Bits 5:4 = 1: LFB writes go to the back buffer.
-        pub const WRITE_BACK: u32 = 1 << 4;
+        pub const WRITE_BACK: u32 = L.with_write_buffer_select(ColorBuffer::Back).0;
         /// Bit 8: LFB writes go through the pixel pipeline.
-        pub const PIPELINE: u32 = 1 << 8;
+        pub const PIPELINE: u32 = L.with_enable_pixel_pipeline(true).0;
         /// Bits 10:9: RGBA lanes `l` (0 ARGB, 1 ABGR, 2 RGBA, 3 BGRA).
         pub const fn lanes(l: u32) -> u32 {
-            (l & 3) << 9
+            L.with_rgba_lanes(RgbaLanes::from_bits(l)).0
         }
         /// Bit 11: swap the 16-bit words of writes.
-        pub const WORD_SWAP_WRITES: u32 = 1 << 11;
+        pub const WORD_SWAP_WRITES: u32 = L.with_word_swap_writes(true).0;
         /// Bit 12: byte swizzle writes.
-        pub const BYTE_SWIZZLE_WRITES: u32 = 1 << 12;
+        pub const BYTE_SWIZZLE_WRITES: u32 = L.with_byte_swizzle_writes(true).0;
         /// Bit 13: Y origin at the bottom of the screen.
-        pub const Y_ORIGIN: u32 = 1 << 13;
+        pub const Y_ORIGIN: u32 = L.with_y_origin(true).0;
         /// Bit 15: swap the 16-bit words of reads.
-        pub const WORD_SWAP_READS: u32 = 1 << 15;
+        pub const WORD_SWAP_READS: u32 = L.with_word_swap_reads(true).0;
         /// Bit 16: byte swizzle reads.
-        pub const BYTE_SWIZZLE_READS: u32 = 1 << 16;
+        pub const BYTE_SWIZZLE_READS: u32 = L.with_byte_swizzle_reads(true).0;
     }
 
     /// `alphaMode` (spec 5.18).
     pub mod alpha {
+        use super::*;
+
+        const A: AlphaMode = AlphaMode(0);
         /// Bit 0 and bits 3:1: enable the alpha test with function `f`.
         pub const fn test(f: u32) -> u32 {
-            1 | (f & 7) << 1
+            A.with_alpha_test_enable(true)
+                .with_alpha_function(CompareFunction::from_bits(f))
+                .0
         }
         /// Bit 4: enable alpha blending.
-        pub const BLEND: u32 = 1 << 4;
+        pub const BLEND: u32 = A.with_alpha_blend_enable(true).0;
         /// Bits 11:8 and 15:12: RGB source and destination blend factors.
         pub const fn rgb_factors(src: u32, dst: u32) -> u32 {
-            (src & 0xf) << 8 | (dst & 0xf) << 12
+            A.with_src_rgb_blend(BlendFactor::from_bits(src))
+                .with_dst_rgb_blend(BlendFactor::from_bits(dst))
+                .0
+        }
+        /// Bits 19:16 and 23:20: alpha-channel source and destination blend factors.
+        pub const fn alpha_factors(src: u32, dst: u32) -> u32 {
+            A.with_src_alpha_blend(BlendFactor::from_bits(src))
+                .with_dst_alpha_blend(BlendFactor::from_bits(dst))
+                .0
         }
         /// Bits 31:24: alpha reference value.
         pub const fn reference(r: u32) -> u32 {
-            (r & 0xff) << 24
+            A.with_alpha_ref(r as u8).0
         }
     }
 
     /// `fbzColorPath` (spec 5.16).
     pub mod color_path {
+        use super::*;
+
         /// Bit 26: subpixel correction of the start parameters.
-        pub const PARAM_ADJUST: u32 = 1 << 26;
+        pub const PARAM_ADJUST: u32 = FbzColorPath(0).with_param_adjust(true).0;
     }
 
     /// `fogMode` (spec 5.17).
     pub mod fog {
+        use super::*;
+
+        const F: FogMode = FogMode(0);
         /// Bit 0: enable fog.
-        pub const ENABLE: u32 = 1 << 0;
+        pub const ENABLE: u32 = F.with_enable_fog(true).0;
         /// Bit 1: add zero instead of `fogColor`.
-        pub const ADD: u32 = 1 << 1;
+        pub const ADD: u32 = F.with_fog_add(true).0;
         /// Bit 2: multiply zero instead of the colour.
-        pub const MULT: u32 = 1 << 2;
+        pub const MULT: u32 = F.with_fog_mult(true).0;
         /// Bit 3: fog alpha from iterated alpha.
-        pub const ALPHA: u32 = 1 << 3;
+        pub const ALPHA: u32 = F.with_fog_za(FogZa::IteratedAlpha).0;
         /// Bit 4: fog alpha from iterated Z bits 27:20.
-        pub const Z: u32 = 1 << 4;
+        pub const Z: u32 = F.with_fog_za(FogZa::IteratedZ).0;
         /// Bit 5: add `fogColor` as a constant.
-        pub const CONSTANT: u32 = 1 << 5;
+        pub const CONSTANT: u32 = F.with_fog_constant(true).0;
     }
 }
 
@@ -287,7 +321,7 @@ pub fn wait_idle(port: &mut impl Port, max_reads: u32) -> bool {
     port.write(addr::NOP_CMD, 0);
     let mut idle = 0;
     for _ in 0..max_reads {
-        if port.read(addr::STATUS) & (1 << 9) != 0 {
+        if Status(port.read(addr::STATUS)).sst1_busy() {
             idle = 0;
         } else {
             idle += 1;
@@ -302,14 +336,10 @@ pub fn wait_idle(port: &mut impl Port, max_reads: u32) -> bool {
 /// Set the clip rectangle: columns `left..right`, rows `low..high` (spec 5.21: left and
 /// low inclusive, right and high exclusive; y = 0 is the top of the screen).
 pub fn set_clip(port: &mut impl Port, left: u32, right: u32, low: u32, high: u32) {
-    port.write(
-        addr::CLIP_LEFT_RIGHT,
-        (left & 0x3ff) << 16 | (right & 0x3ff),
-    );
-    port.write(
-        addr::CLIP_LOW_Y_HIGH_Y,
-        (low & 0x3ff) << 16 | (high & 0x3ff),
-    );
+    let lr = ClipLeftRight(0).with_clip_left(left).with_clip_right(right);
+    let y = ClipLowYHighY(0).with_clip_lowy(low).with_clip_highy(high);
+    port.write(addr::CLIP_LEFT_RIGHT, lr.0);
+    port.write(addr::CLIP_LOW_Y_HIGH_Y, y.0);
 }
 
 /// FASTFILL (spec 5.23) of the current clip rectangle with `color1` = `rgb` (0x00RRGGBB)

@@ -116,7 +116,7 @@ fn blend_alpha_channel_into_alpha_planes() {
         fastfill(&mut p, 0x0080_8080, 0x30);
         p.write(
             addr::ALPHA_MODE,
-            alpha::BLEND | alpha::rgb_factors(4, 0) | src_a << 16 | dst_a << 20,
+            alpha::BLEND | alpha::rgb_factors(4, 0) | alpha::alpha_factors(src_a, dst_a),
         );
         triangle_fixed(&mut p, &Triangle::corner(0x80c8_6432));
         assert_eq!(p.read_aux(4, 4), want, "alpha factors {src_a} {dst_a}");

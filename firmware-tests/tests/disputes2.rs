@@ -20,7 +20,7 @@ use firmware_tests::{
 use pixelfx::profile::{AlphaTestInput, FloatOverflow, LfbWordSwap, PatternRow, SubpixelZ};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
-use sst1_regs::addr;
+use sst1_regs::{addr, FbzColorPath, RgbSelect, TLod, TcMselect, TextureFormat, TextureMode};
 
 const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
 
@@ -213,7 +213,10 @@ fn alpha_test_program(alpha_test_input: AlphaTestInput) -> (u16, u32) {
         alpha_test_input,
         ..Default::default()
     });
-    p.write(addr::FBZ_COLOR_PATH, 1 << 17);
+    p.write(
+        addr::FBZ_COLOR_PATH,
+        FbzColorPath(0).with_cca_zero_other(true).0,
+    );
     p.write(addr::ALPHA_MODE, alpha::test(4) | alpha::reference(0x40));
     p.write(addr::NOP_CMD, 1);
     triangle_fixed(&mut p, &Triangle::corner(0x80c8_6432));
@@ -314,12 +317,20 @@ fn lfb_word_swap_never() {
 /// Start of the texture region of the aperture (spec 4).
 const TEX_BASE: u32 = 0x80_0000;
 /// `textureMode` format RGB565 (bits 11:8 = 10); point sampling, no perspective.
-const TEX_565: u32 = 10 << 8;
+const TEX_565: u32 = TextureMode(0).with_format(TextureFormat::Rgb565).0;
 /// `textureMode` decal: `tc_zero_other` + `tc_add_clocal`, `tca_zero_other` +
 /// `tca_add_alocal` (bits 12, 18, 21, 28).
-const DECAL: u32 = 1 << 12 | 1 << 18 | 1 << 21 | 1 << 28;
+const DECAL: u32 = TextureMode(0)
+    .with_tc_zero_other(true)
+    .with_tc_add_clocal(true)
+    .with_tca_zero_other(true)
+    .with_tca_add_alocal(true)
+    .0;
 /// `fbzColorPath`: colour from the texture, texturing on (bit 27).
-const COLOR_PATH_TEXTURE: u32 = 1 | 1 << 27;
+const COLOR_PATH_TEXTURE: u32 = FbzColorPath(0)
+    .with_cc_rgbselect(RgbSelect::Texture)
+    .with_texture_enable(true)
+    .0;
 
 /// A board with the 2 x 2 level LOD 7 of a 256 x 256 RGB565 texture at base 0, texels
 /// `[t][s]`, `tLOD` = `t_lod` and `textureMode` = `mode`, then a flat triangle with
@@ -368,7 +379,7 @@ fn texel_program_with(
 /// zero gradients the computed LOD falls below `lodmin` and is clamped to it, so the
 /// LOD is `quarters` / 4 whatever the LOD calculation.
 const fn fixed_lod(quarters: u32) -> u32 {
-    quarters | quarters << 6
+    TLod(0).with_lodmin(quarters).with_lodmax(quarters).0
 }
 
 /// `CoordRounding::Floor` (DOSBox Staging, 86Box; default): S = -2^-18 texel (14.18
@@ -408,7 +419,10 @@ fn coord_rounding_floor_wraps_to_the_last_texel() {
 #[test]
 fn decal_invert_ignored() {
     let red = [[0xf800; 2]; 2];
-    let mode = TEX_565 | DECAL | 1 << 20 | 1 << 29;
+    let mode = TextureMode(TEX_565 | DECAL)
+        .with_tc_invert_output(true)
+        .with_tca_invert_output(true)
+        .0;
     assert_eq!(texel_program(red, fixed_lod(7 << 2), mode, 0), 0xf800);
     let applied = texelfx::TexelProfile {
         decal_invert: texelfx::DecalInvert::Applied,
@@ -430,20 +444,25 @@ fn decal_invert_ignored() {
 #[test]
 fn trilinear_reverses_the_blend_on_odd_lods() {
     let white = [[0xffff; 2]; 2];
-    let combine = (1 | 2 | 5 << 2 | 0x20 | 0x40) << 12;
-    let mode = TEX_565 | combine | 1 << 30;
-    let lod = 7 << 2 | 1; // 7.25
-                          // lodmin 7.25, lodmax 8.0.
-    let pixel = texel_program(white, lod | (8 << 2) << 6, mode, 0);
+    let mode = TextureMode(TEX_565)
+        .with_tc_zero_other(true)
+        .with_tc_sub_clocal(true)
+        .with_tc_mselect(TcMselect::LodFrac)
+        .with_tc_reverse_blend(true)
+        .with_tc_add_clocal(true)
+        .with_trilinear(true);
+    // lodmin 7.25, lodmax 8.0 (4.2 fixed point).
+    let lod = TLod(0).with_lodmin(7 << 2 | 1).with_lodmax(8 << 2).0;
+    let pixel = texel_program(white, lod, mode.0, 0);
     assert_eq!(pixel, rgb565_truncated(63, 63, 63));
     // Without the trilinear bit the factor is the fraction itself on every LOD.
-    let plain = texel_program(white, lod | (8 << 2) << 6, mode & !(1 << 30), 0);
+    let plain = texel_program(white, lod, mode.with_trilinear(false).0, 0);
     assert_eq!(plain, rgb565_truncated(190, 190, 190));
     // `Trilinear::Ignored`: the bit has no effect.
     let ignored = texelfx::TexelProfile {
         trilinear: texelfx::Trilinear::Ignored,
         ..Default::default()
     };
-    let pixel = texel_program_with(ignored, white, lod | (8 << 2) << 6, mode, 0);
+    let pixel = texel_program_with(ignored, white, lod, mode.0, 0);
     assert_eq!(pixel, rgb565_truncated(190, 190, 190));
 }

@@ -22,7 +22,9 @@ use pixelfx::profile::{
 };
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
-use sst1_regs::addr;
+use sst1_regs::{
+    addr, AlphaLocalSelect, FbzColorPath, RgbSelect, TLod, TextureFormat, TextureMode,
+};
 use texelfx::{ChainModel, FilterSelect, Rgb332Blue, TexelProfile};
 
 const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
@@ -140,9 +142,21 @@ const TEX_BASE: u32 = 0x80_0000;
 /// `textureMode` decal: `tc_zero_other` + `tc_add_clocal`, `tca_zero_other` +
 /// `tca_add_alocal` (bits 12, 18, 21, 28); format 0 (RGB332), point sampled (OR another
 /// format into bits 11:8).
-const DECAL_RGB332: u32 = 1 << 12 | 1 << 18 | 1 << 21 | 1 << 28;
+const DECAL_RGB332: u32 = TextureMode(0)
+    .with_tc_zero_other(true)
+    .with_tc_add_clocal(true)
+    .with_tca_zero_other(true)
+    .with_tca_add_alocal(true)
+    .0;
 /// `fbzColorPath`: colour from the texture, texturing on (bit 27).
-const COLOR_PATH_TEXTURE: u32 = 1 | 1 << 27;
+const COLOR_PATH_TEXTURE: u32 = FbzColorPath(0)
+    .with_cc_rgbselect(RgbSelect::Texture)
+    .with_texture_enable(true)
+    .0;
+/// `textureMode` format RGB565 (bits 11:8 = 10).
+const TEX_565: u32 = TextureMode(0).with_format(TextureFormat::Rgb565).0;
+/// `tLOD` with `lodmin` = `lodmax` = LOD 7 (28 in 4.2 fixed point, spec 5.51).
+const LOD_7: u32 = TLod(0).with_lodmin(28).with_lodmax(28).0;
 
 /// The 2 x 2 LOD 7 of a 256 x 256 RGB332 texture with texel (0, 0) = `texel`, drawn at
 /// S = T = 0 by a flat triangle, undithered: the pixel at (4, 4).
@@ -156,8 +170,7 @@ fn rgb332_program(rgb332_blue: Rgb332Blue, texel: u8) -> u16 {
     );
     p.write(addr::FBZ_MODE, BASE);
     p.write(addr::TEXTURE_MODE, DECAL_RGB332);
-    // lodmin = lodmax = 7 (4.2 fixed point, spec 5.51).
-    p.write(addr::T_LOD, 28 | 28 << 6);
+    p.write(addr::T_LOD, LOD_7);
     p.write(addr::TEX_BASE_ADDR, 0);
     // Spec 8: LOD in address bits 20:17, T in 16:9; four 8-bit texels per write.
     p.write(TEX_BASE | 7 << 17, u32::from(texel));
@@ -206,7 +219,7 @@ fn rgb332_blue_dosbox_table() {
 // --- point or bilinear: FilterSelect ----------------------------------------------------
 
 /// `textureMode`: RGB565 decal with only `tmagfilter` (bit 2) set.
-const DECAL_565_MAG_ONLY: u32 = 10 << 8 | 1 << 2 | 1 << 12 | 1 << 18 | 1 << 21 | 1 << 28;
+const DECAL_565_MAG_ONLY: u32 = TextureMode(TEX_565 | DECAL_RGB332).with_tmagfilter(true).0;
 
 /// LOD 7 (2 x 2) of an RGB565 texture, texel column 0 red and column 1 green, with
 /// `lodmin` 0 and `lodmax` 7, drawn with dS/dx = 256 texels per pixel: the LOD is
@@ -222,7 +235,7 @@ fn filter_program(filter_select: FilterSelect) -> u16 {
     );
     p.write(addr::FBZ_MODE, BASE);
     p.write(addr::TEXTURE_MODE, DECAL_565_MAG_ONLY);
-    p.write(addr::T_LOD, 28 << 6);
+    p.write(addr::T_LOD, TLod(0).with_lodmax(28).0);
     p.write(addr::TEX_BASE_ADDR, 0);
     for t in 0..2u32 {
         // Spec 8: LOD in address bits 20:17, T in 16:9, two 16-bit texels per write.
@@ -254,7 +267,13 @@ fn filter_select_either_bit() {
 /// `c_local` (bit 14), `cc_localselect_override` (bit 7): the output is `c_local`, which
 /// texture alpha bit 7 makes `color0` (set) or iterated RGB (clear). Nothing else reads the
 /// texel.
-const OVERRIDE_ONLY: u32 = 1 | 1 << 7 | 1 << 8 | 1 << 14 | 1 << 27;
+const OVERRIDE_ONLY: u32 = FbzColorPath(0)
+    .with_cc_rgbselect(RgbSelect::Texture)
+    .with_cc_localselect_override(true)
+    .with_cc_zero_other(true)
+    .with_cc_add_clocal(true)
+    .with_texture_enable(true)
+    .0;
 
 /// A board whose TMU holds a white, opaque RGB565 LOD 7 (2 x 2) at base 0, bound with
 /// `textureMode` = `texture_mode`.
@@ -262,7 +281,7 @@ fn white_texture_board(pixel: PixelProfile, texel: TexelProfile, texture_mode: u
     let mut p = board(pixel, texel);
     p.write(addr::FBZ_MODE, BASE);
     p.write(addr::TEXTURE_MODE, texture_mode);
-    p.write(addr::T_LOD, 28 | 28 << 6);
+    p.write(addr::T_LOD, LOD_7);
     p.write(addr::TEX_BASE_ADDR, 0);
     p.write(TEX_BASE | 7 << 17, 0xffff_ffff);
     p
@@ -275,7 +294,7 @@ fn override_program(override_texel: OverrideTexel, cp: u32) -> u16 {
         override_texel,
         ..Default::default()
     };
-    let mut p = white_texture_board(pixel, TexelProfile::default(), 10 << 8 | DECAL_RGB332);
+    let mut p = white_texture_board(pixel, TexelProfile::default(), TEX_565 | DECAL_RGB332);
     p.write(addr::COLOR0, 0x80a0_c0e0);
     textured_pixel(&mut p, cp, 0)
 }
@@ -301,7 +320,10 @@ fn override_reads_zero_when_the_texel_is_unused() {
     // Once the colour comes from the texel as well, MAME fetches it: c_other = texel
     // (not zeroed) plus c_local = color0 saturates to white.
     assert_eq!(
-        override_program(OverrideTexel::ZeroWhenUnused, OVERRIDE_ONLY & !(1 << 8)),
+        override_program(
+            OverrideTexel::ZeroWhenUnused,
+            FbzColorPath(OVERRIDE_ONLY).with_cc_zero_other(false).0
+        ),
         0xffff
     );
 }
@@ -321,7 +343,11 @@ fn z_alpha_program(z_alpha: ZAlphaByte) -> (u16, u32, u32) {
         TexelProfile::default(),
     );
     p.write(addr::FBZ_MODE, BASE);
-    p.write(addr::FBZ_COLOR_PATH, 2 << 5 | 1 << 17 | 1 << 23);
+    let path = FbzColorPath(0)
+        .with_cca_localselect(AlphaLocalSelect::IteratedZ)
+        .with_cca_zero_other(true)
+        .with_cca_add_clocal(true);
+    p.write(addr::FBZ_COLOR_PATH, path.0);
     p.write(addr::ALPHA_MODE, alpha::test(4) | alpha::reference(0x80));
     let t = Triangle::corner(0xff20_3040);
     // triangle_fixed writes start Z 0: set Z afterwards and draw again, counting only that.
@@ -363,7 +389,11 @@ fn chain_program(chain: ChainModel) -> u16 {
         chain,
         ..Default::default()
     };
-    let mut p = white_texture_board(PixelProfile::default(), texel, 10 << 8 | 1 << 12 | 1 << 21);
+    let mode = TextureMode(TEX_565)
+        .with_tc_zero_other(true)
+        .with_tca_zero_other(true)
+        .0;
+    let mut p = white_texture_board(PixelProfile::default(), texel, mode);
     textured_pixel(&mut p, COLOR_PATH_TEXTURE, 0)
 }
 

@@ -25,8 +25,8 @@
 //! once when stored (verified against the glide-sdk test24 trace for lines).
 
 use crate::draw::{fetch, fetch_byte, SNAP_BIAS};
-use crate::hw::bits::ZAWRMASK;
 use sst1_regs::addr::*;
+use sst1_regs::FbzMode;
 
 /// `GR_AA_ORDERED` sets these bits of the smoothing mode (3dfx `fxglide.h`:
 /// `GR_AA_ORDERED_{POINTS,LINES,TRIANGLES}_MASK`).
@@ -271,7 +271,8 @@ impl crate::Glide {
             return;
         }
         let fbz = self.st.fbi.fbz_mode;
-        self.hw.w(FBZ_MODE, fbz & !ZAWRMASK);
+        self.hw
+            .w(FBZ_MODE, FbzMode(fbz).with_aux_buffer_mask(false).0);
         if edges[0] {
             self.aa_edge(a, b, c);
         }

@@ -33,10 +33,10 @@
 
 use crate::aa::{AA_LINES, AA_POINTS, AA_TRIANGLES};
 use crate::consts::*;
-use crate::hw::bits::*;
 use crate::hw::{tmu_chip, PACKER_FIX};
 use crate::x87::Ext;
 use sst1_regs::addr::*;
+use sst1_regs::{AlphaLocalSelect, FbzColorPath, FbzMode, FogMode, FogZa};
 use std::borrow::Cow;
 
 /// Added to window coordinates so the float keeps exactly 4 fraction bits (12.4).
@@ -201,7 +201,8 @@ impl crate::Glide {
         let st = &self.st;
         let l = &self.layout;
         let mut p = 0u32;
-        if st.fbi.fbz_color_path & ENTEXTUREMAP != 0 {
+        let path = FbzColorPath(st.fbi.fbz_color_path);
+        if path.texture_enable() {
             let m = st.tmu_mask;
             p |= req::OOW_FBI;
             if m & 1 != 0 {
@@ -221,25 +222,23 @@ impl crate::Glide {
         if st.ac_requires_it_alpha {
             p |= req::IT_ALPHA;
         }
-        if st.fbi.fbz_color_path & CC_ALOCALSELECT == ALOCAL_Z {
+        if matches!(path.cca_localselect(), AlphaLocalSelect::IteratedZ) {
             p |= req::OOZ;
         }
-        let fbz = st.fbi.fbz_mode;
-        if fbz & ENDEPTHBUFFER != 0 {
-            p |= if fbz & WBUFFER != 0 {
+        let fbz = FbzMode(st.fbi.fbz_mode);
+        if fbz.enable_depthbuffer() {
+            p |= if fbz.wbuffer_select() {
                 req::OOW_FBI
             } else {
                 req::OOZ
             };
         }
-        let fog = st.fbi.fog_mode;
-        if fog & ENFOGGING != 0 {
-            p |= if fog & FOG_Z != 0 {
-                req::OOZ
-            } else if fog & FOG_ALPHA != 0 {
-                req::IT_ALPHA
-            } else {
-                req::OOW_FBI
+        let fog = FogMode(st.fbi.fog_mode);
+        if fog.enable_fog() {
+            p |= match fog.fog_za() {
+                FogZa::IteratedZ | FogZa::IteratedZAndAlpha => req::OOZ,
+                FogZa::IteratedAlpha => req::IT_ALPHA,
+                FogZa::FogTable => req::OOW_FBI,
             };
         }
         let window = st.coordinate_space == GR_WINDOW_COORDS;

@@ -8,9 +8,9 @@
 //! 16-bit formats and 4096 for 32-bit ones.
 
 use crate::consts::*;
-use crate::hw::bits::*;
 use crate::hw::LFB_BASE;
 use sst1_regs::addr::*;
+use sst1_regs::{ColorBuffer, FbzMode, LfbMode, LfbReadBuffer, LfbWriteFormat, ZaColor};
 
 /// What a successful `grLfbLock` reports (`GrLfbInfo_t` without the pointer).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -22,11 +22,6 @@ pub struct LfbInfo {
     /// `GR_ORIGIN_*`.
     pub origin: u32,
 }
-
-const LFB_WRITE_BACK: u32 = 1 << 4;
-const LFB_WRITEBUF: u32 = 3 << 4;
-const LFB_READBUF: u32 = 3 << 6;
-const LFB_FORMAT: u32 = 0xf;
 
 /// Bytes per pixel slot in the LFB for a write mode (16-bit modes pack two pixels
 /// per word; 32-bit modes use one word per pixel).
@@ -84,21 +79,23 @@ impl crate::Glide {
         if self.lfb_locks[slot].is_some() {
             return None;
         }
-        let yorigin = if origin != 0 { LFB_YORIGIN } else { 0 };
+        let y_origin = origin != 0;
         if ty == GR_LFB_READ_ONLY {
             let sel = match buffer {
-                GR_BUFFER_FRONTBUFFER => 0,
-                GR_BUFFER_BACKBUFFER => 1 << 6,
-                GR_BUFFER_AUXBUFFER => 2 << 6,
+                GR_BUFFER_FRONTBUFFER => LfbReadBuffer::Front,
+                GR_BUFFER_BACKBUFFER => LfbReadBuffer::Back,
+                GR_BUFFER_AUXBUFFER => LfbReadBuffer::Aux,
                 _ => return None,
             };
-            let l = (self.st.fbi.lfb_mode & !(LFB_READBUF | LFB_YORIGIN)) | sel | yorigin;
-            self.hw.w(LFB_MODE, l);
-            self.st.fbi.lfb_mode = l;
+            let l = LfbMode(self.st.fbi.lfb_mode)
+                .with_read_buffer_select(sel)
+                .with_y_origin(y_origin);
+            self.hw.w(LFB_MODE, l.0);
+            self.st.fbi.lfb_mode = l.0;
             self.lfb_locks[slot] = Some(buffer);
             return Some(LfbInfo {
                 stride_in_bytes: 2048,
-                write_mode: self.st.fbi.lfb_mode & LFB_FORMAT,
+                write_mode: l.write_format() as u32,
                 origin,
             });
         }
@@ -120,9 +117,9 @@ impl crate::Glide {
                 }
                 (
                     if buffer == GR_BUFFER_BACKBUFFER {
-                        LFB_WRITE_BACK
+                        ColorBuffer::Back
                     } else {
-                        0
+                        ColorBuffer::Front
                     },
                     m,
                 )
@@ -136,24 +133,27 @@ impl crate::Glide {
                 if m != GR_LFBWRITEMODE_ZA16 {
                     return None;
                 }
-                (0, m)
+                (ColorBuffer::Front, m)
             }
             _ => return None,
         };
-        let za =
-            (self.st.lfb_constant_depth & 0xffff) | (u32::from(self.st.lfb_constant_alpha) << 24);
-        self.hw.w(ZA_COLOR, za);
-        let mut fbz = self.st.fbi.fbz_mode & !ENZBIAS;
-        let mut l =
-            self.st.fbi.lfb_mode & !(LFB_WRITEBUF | LFB_YORIGIN | LFB_FORMAT | LFB_ENPIXPIPE);
-        l |= sel | mode | yorigin;
+        let za = ZaColor::default()
+            .with_constant_depth(self.st.lfb_constant_depth as u16)
+            .with_constant_alpha(self.st.lfb_constant_alpha);
+        self.hw.w(ZA_COLOR, za.0);
+        let mut fbz = FbzMode(self.st.fbi.fbz_mode).with_enable_depth_bias(false);
+        // GR_LFBWRITEMODE_* is the hardware write format.
+        let l = LfbMode(self.st.fbi.lfb_mode)
+            .with_write_buffer_select(sel)
+            .with_y_origin(y_origin)
+            .with_write_format(LfbWriteFormat::from_bits(mode))
+            .with_enable_pixel_pipeline(pipeline);
         if pipeline {
-            l |= LFB_ENPIXPIPE;
-            fbz = (fbz & !YORIGIN) | if origin != 0 { YORIGIN } else { 0 };
+            fbz = fbz.with_y_origin(y_origin);
         }
-        self.hw.w(LFB_MODE, l);
-        self.st.fbi.lfb_mode = l;
-        self.hw.w(FBZ_MODE, fbz);
+        self.hw.w(LFB_MODE, l.0);
+        self.st.fbi.lfb_mode = l.0;
+        self.hw.w(FBZ_MODE, fbz.0);
         self.lfb_locks[slot] = Some(buffer);
         Some(LfbInfo {
             stride_in_bytes: stride_for(mode),

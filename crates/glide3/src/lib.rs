@@ -45,10 +45,10 @@ pub use tex::TexInfo;
 
 use std::borrow::Cow;
 
-use hw::bits::{DRAWBUFFER_BACK, ENRECTCLIP, ENZBIAS, RGBWRMASK, SEQ_8_DOWNLD, ZAWRMASK};
 use hw::Hw;
 use init::{Init, InitState};
 use sst1_regs::addr::*;
+use sst1_regs::{ColorBuffer, FbzColorPath, FbzMode, TextureMode, ZaColor};
 use state::{dirty, Combine};
 
 /// Error callback: message and whether Glide considers it fatal.
@@ -337,17 +337,19 @@ impl Glide {
         self.open = true;
 
         // Texture download sequencing exists from TMU revision 1 on.
-        let tex_mode = if self.board.tmu_revision == 0 {
-            0
-        } else {
-            SEQ_8_DOWNLD
-        };
+        let tex_mode = TextureMode::default()
+            .with_seq_8_downld(self.board.tmu_revision != 0)
+            .0;
         let mut st = GlideState::new(self.board.tmus as usize, tex_mode);
         st.screen_width = mode.timing.x_dimension;
         st.screen_height = mode.timing.y_dimension;
         st.num_buffers = color_buffers as u32;
         st.color_format = color_format;
-        st.fbi.fbz_mode = ENRECTCLIP | ENZBIAS | DRAWBUFFER_BACK;
+        st.fbi.fbz_mode = FbzMode::default()
+            .with_enable_clipping(true)
+            .with_enable_depth_bias(true)
+            .with_draw_buffer(ColorBuffer::Back)
+            .0;
         self.st = st;
         self.lfb_locks = [None; 2];
         let (w, h) = (mode.timing.x_dimension, mode.timing.y_dimension);
@@ -440,7 +442,9 @@ impl Glide {
             );
             return;
         }
-        if (self.st.fbi.fbz_color_path ^ state.fbi.fbz_color_path) & hw::bits::ENTEXTUREMAP != 0 {
+        if FbzColorPath(self.st.fbi.fbz_color_path).texture_enable()
+            != FbzColorPath(state.fbi.fbz_color_path).texture_enable()
+        {
             self.hw.w(NOP_CMD, 0);
         }
         self.st = state.clone();
@@ -979,21 +983,21 @@ impl Glide {
     /// `grBufferClear`: fast-fill the draw buffer (and depth/alpha when enabled).
     pub fn buffer_clear(&mut self, color: u32, alpha: u8, depth: u32) {
         self.flush_state();
-        let fbz = self.st.fbi.fbz_mode;
+        let fbz = FbzMode(self.st.fbi.fbz_mode);
         let old_c1 = self.st.fbi.color1;
         let old_za = self.st.fbi.za_color;
-        let mut za = old_za;
-        if fbz & RGBWRMASK != 0 {
+        let mut za = ZaColor(old_za);
+        if fbz.rgb_buffer_mask() {
             self.hw
                 .w(COLOR1, state::swizzle(color, self.st.color_format));
         }
-        if fbz & (hw::bits::ENALPHABUFFER | ZAWRMASK) == hw::bits::ENALPHABUFFER | ZAWRMASK {
-            za = (za & !0xff00_0000) | (u32::from(alpha) << 24);
-            self.hw.w(ZA_COLOR, za);
+        if fbz.enable_alpha_planes() && fbz.aux_buffer_mask() {
+            za = za.with_constant_alpha(alpha);
+            self.hw.w(ZA_COLOR, za.0);
         }
-        if fbz & (hw::bits::ENDEPTHBUFFER | ZAWRMASK) == hw::bits::ENDEPTHBUFFER | ZAWRMASK {
-            za = (za & !0xffff) | (depth & 0xffff);
-            self.hw.w(ZA_COLOR, za);
+        if fbz.enable_depthbuffer() && fbz.aux_buffer_mask() {
+            za = za.with_constant_depth(depth as u16);
+            self.hw.w(ZA_COLOR, za.0);
         }
         self.hw.w(FASTFILL_CMD, 1);
         self.hw.w(COLOR1, old_c1);

@@ -10,8 +10,12 @@
 //! distate.c), so the register stream matches the glide-sdk traces.
 
 use crate::consts::*;
-use crate::hw::bits::*;
 use sst1_regs::addr::*;
+use sst1_regs::{
+    AlphaLocalSelect, AlphaMode, AlphaSelect, BlendFactor, CcMselect, ClipLeftRight, ClipLowYHighY,
+    ColorBuffer, CompareFunction, FbzColorPath, FbzMode, FogMode, FogZa, LfbMode, RgbSelect,
+    RgbaLanes, ZaColor,
+};
 
 /// Register groups that can be dirty.
 pub(crate) mod dirty {
@@ -234,174 +238,122 @@ impl GlideState {
         if a_df != GR_BLEND_ONE && a_df != GR_BLEND_ZERO {
             a_df = GR_BLEND_ZERO;
         }
-        let mut m = self.fbi.alpha_mode;
-        if rgb_sf == GR_BLEND_ONE
+        let blend = !(rgb_sf == GR_BLEND_ONE
             && rgb_df == GR_BLEND_ZERO
             && a_sf == GR_BLEND_ONE
-            && a_df == GR_BLEND_ZERO
-        {
-            m &= !ENALPHABLEND;
-        } else {
-            m |= ENALPHABLEND;
-        }
-        m &= !BLEND_FACTORS;
-        m |= (rgb_sf << RGBSRCFACT_SHIFT)
-            | (rgb_df << RGBDSTFACT_SHIFT)
-            | (a_sf << ASRCFACT_SHIFT)
-            | (a_df << ADSTFACT_SHIFT);
+            && a_df == GR_BLEND_ZERO);
         let f = self.args.alpha_test_fn;
-        m &= !(ALPHAFUNC | ENALPHAFUNC);
-        if f != GR_CMP_ALWAYS {
-            m |= (f << ALPHAFUNC_SHIFT) | ENALPHAFUNC;
-        }
-        m = (m & !ALPHAREF) | (u32::from(self.args.alpha_ref) << ALPHAREF_SHIFT);
-        self.fbi.alpha_mode = m;
+        let test = f != GR_CMP_ALWAYS;
+        // GR_BLEND_* and GR_CMP_* are the hardware encodings.
+        let m = AlphaMode(self.fbi.alpha_mode)
+            .with_alpha_blend_enable(blend)
+            .with_src_rgb_blend(BlendFactor::from_bits(rgb_sf))
+            .with_dst_rgb_blend(BlendFactor::from_bits(rgb_df))
+            .with_src_alpha_blend(BlendFactor::from_bits(a_sf))
+            .with_dst_alpha_blend(BlendFactor::from_bits(a_df))
+            .with_alpha_test_enable(test)
+            .with_alpha_function(if test {
+                CompareFunction::from_bits(f)
+            } else {
+                CompareFunction::Never
+            })
+            .with_alpha_ref(self.args.alpha_ref);
+        self.fbi.alpha_mode = m.0;
     }
 
     /// Returns whether texture mapping was switched on or off (Glide then issues a NOP).
     fn alpha_combine(&mut self) -> bool {
         let c = self.args.alpha_combine;
-        let mut p = self.fbi.fbz_color_path;
-        let old_tex = p & ENTEXTUREMAP;
-        p &= !CCA_FIELDS;
-        if c.factor & 0x8 == 0 {
-            p |= CCA_REVERSE_BLEND;
-        }
+        let old = FbzColorPath(self.fbi.fbz_color_path);
         let factor = c.factor & 0x7;
         self.ac_requires_texture =
             factor == GR_COMBINE_FACTOR_TEXTURE_ALPHA || c.other == GR_COMBINE_OTHER_TEXTURE;
         self.ac_requires_it_alpha =
             c.local == GR_COMBINE_LOCAL_ITERATED || c.other == GR_COMBINE_OTHER_ITERATED;
-        p |= factor << CCA_MSELECT_SHIFT;
-        p |= (c.local & 3) << CC_ALOCALSELECT_SHIFT;
-        p |= (c.other & 3) << 2;
-        if c.invert {
-            p |= CCA_INVERT_OUTPUT;
-        }
-        p |= match c.function {
-            GR_COMBINE_FUNCTION_ZERO => CCA_ZERO_OTHER,
-            GR_COMBINE_FUNCTION_LOCAL | GR_COMBINE_FUNCTION_LOCAL_ALPHA => {
-                CCA_ZERO_OTHER | CCA_ADD_ALOCAL
-            }
-            GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL
-            | GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA => CCA_ADD_ALOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL => CCA_SUB_CLOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL
-            | GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
-                CCA_SUB_CLOCAL | CCA_ADD_ALOCAL
-            }
-            GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL
-            | GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
-                CCA_ZERO_OTHER | CCA_SUB_CLOCAL | CCA_ADD_ALOCAL
-            }
-            _ => 0,
-        };
-        if self.cc_requires_texture || self.ac_requires_texture {
-            p |= ENTEXTUREMAP;
-        }
-        self.fbi.fbz_color_path = p;
-        old_tex != p & ENTEXTUREMAP
+        // The alpha unit adds its local alpha for both "add local" kinds.
+        let [zero, sub, add_c, add_a] = combine_function_bits(c.function);
+        // Every alpha-combine field and the texture enable is set here.
+        let p = old
+            .with_cc_aselect(AlphaSelect::from_bits(c.other))
+            .with_cca_localselect(AlphaLocalSelect::from_bits(c.local))
+            .with_cca_zero_other(zero)
+            .with_cca_sub_clocal(sub)
+            .with_cca_mselect(CcMselect::from_bits(factor))
+            .with_cca_reverse_blend(c.factor & 0x8 == 0)
+            .with_cca_add_clocal(false)
+            .with_cca_add_alocal(add_c || add_a)
+            .with_cca_invert_output(c.invert)
+            .with_texture_enable(self.cc_requires_texture || self.ac_requires_texture);
+        self.fbi.fbz_color_path = p.0;
+        old.texture_enable() != p.texture_enable()
     }
 
     fn color_combine(&mut self) -> bool {
         let c = self.args.color_combine;
-        let mut p = self.fbi.fbz_color_path;
-        let old_tex = p & ENTEXTUREMAP;
-        p &= !CC_FIELDS;
-        p |= PARMADJUST;
-        if c.factor & 0x8 == 0 {
-            p |= CC_REVERSE_BLEND;
-        }
+        let old = FbzColorPath(self.fbi.fbz_color_path);
         let factor = c.factor & 0x7;
         self.cc_requires_texture =
             factor == GR_COMBINE_FACTOR_TEXTURE_ALPHA || c.other == GR_COMBINE_OTHER_TEXTURE;
         self.cc_requires_it_rgb =
             c.local == GR_COMBINE_LOCAL_ITERATED || c.other == GR_COMBINE_OTHER_ITERATED;
-        p |= factor << CC_MSELECT_SHIFT;
-        p |= (c.local & 1) << CC_LOCALSELECT_SHIFT;
-        p |= c.other & 3;
-        if c.invert {
-            p |= CC_INVERT_OUTPUT;
-        }
-        p |= match c.function {
-            GR_COMBINE_FUNCTION_ZERO => CC_ZERO_OTHER,
-            GR_COMBINE_FUNCTION_LOCAL => CC_ZERO_OTHER | CC_ADD_CLOCAL,
-            GR_COMBINE_FUNCTION_LOCAL_ALPHA => CC_ZERO_OTHER | CC_ADD_ALOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL => CC_ADD_CLOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA => CC_ADD_ALOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL => CC_SUB_CLOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL => CC_SUB_CLOCAL | CC_ADD_CLOCAL,
-            GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
-                CC_SUB_CLOCAL | CC_ADD_ALOCAL
-            }
-            GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL => {
-                CC_ZERO_OTHER | CC_SUB_CLOCAL | CC_ADD_CLOCAL
-            }
-            GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => {
-                CC_ZERO_OTHER | CC_SUB_CLOCAL | CC_ADD_ALOCAL
-            }
-            _ => 0,
-        };
-        if self.cc_requires_texture || self.ac_requires_texture {
-            p |= ENTEXTUREMAP;
-        }
-        self.fbi.fbz_color_path = p;
-        old_tex != p & ENTEXTUREMAP
+        let [zero, sub, add_c, add_a] = combine_function_bits(c.function);
+        // Every colour-combine field and the texture enable is set here.
+        let p = old
+            .with_cc_rgbselect(RgbSelect::from_bits(c.other))
+            .with_cc_localselect(c.local & 1 != 0)
+            .with_cc_zero_other(zero)
+            .with_cc_sub_clocal(sub)
+            .with_cc_mselect(CcMselect::from_bits(factor))
+            .with_cc_reverse_blend(c.factor & 0x8 == 0)
+            .with_cc_add_clocal(add_c)
+            .with_cc_add_alocal(add_a)
+            .with_cc_invert_output(c.invert)
+            .with_param_adjust(true)
+            .with_texture_enable(self.cc_requires_texture || self.ac_requires_texture);
+        self.fbi.fbz_color_path = p.0;
+        old.texture_enable() != p.texture_enable()
     }
 
     fn fbz_mode(&mut self) {
         let a = self.args;
-        let mut m = self.fbi.fbz_mode;
-        // chroma key
-        if a.chromakey_mode == GR_CHROMAKEY_ENABLE {
-            m |= ENCHROMAKEY;
-        } else {
-            m &= !ENCHROMAKEY;
-        }
-        // depth mask
-        if a.depth_mask {
-            m |= ZAWRMASK;
-        } else {
-            m &= !ZAWRMASK;
-        }
-        m = (m & !ZFUNC) | ((a.depth_fn << ZFUNC_SHIFT) & ZFUNC);
-        m &= !(ENDEPTHBUFFER | WBUFFER | ENZBIAS | ZCOMPARE_TO_ZACOLOR);
-        m |= match a.depth_mode {
-            GR_DEPTHBUFFER_ZBUFFER => ENDEPTHBUFFER | ENZBIAS,
-            GR_DEPTHBUFFER_WBUFFER => ENDEPTHBUFFER | WBUFFER | ENZBIAS,
-            GR_DEPTHBUFFER_ZBUFFER_COMPARE_TO_BIAS => ENDEPTHBUFFER | ZCOMPARE_TO_ZACOLOR,
-            GR_DEPTHBUFFER_WBUFFER_COMPARE_TO_BIAS => ENDEPTHBUFFER | WBUFFER | ZCOMPARE_TO_ZACOLOR,
-            _ => 0,
+        // [enable_depthbuffer, wbuffer_select, enable_depth_bias, depth_source_compare]
+        let [depth, w, bias, compare] = match a.depth_mode {
+            GR_DEPTHBUFFER_ZBUFFER => [true, false, true, false],
+            GR_DEPTHBUFFER_WBUFFER => [true, true, true, false],
+            GR_DEPTHBUFFER_ZBUFFER_COMPARE_TO_BIAS => [true, false, false, true],
+            GR_DEPTHBUFFER_WBUFFER_COMPARE_TO_BIAS => [true, true, false, true],
+            _ => [false; 4],
         };
-        m &= !(ENDITHER | DITHER2X2 | ENDITHERSUBTRACT);
-        m |= match a.dither {
-            GR_DITHER_2x2 => ENDITHER | DITHER2X2,
-            GR_DITHER_4x4 => ENDITHER | ENDITHERSUBTRACT,
-            _ => 0,
+        // [enable_dithering, dither_2x2, dither_subtract]
+        let [dither, dither_2x2, subtract] = match a.dither {
+            GR_DITHER_2x2 => [true, true, false],
+            GR_DITHER_4x4 => [true, false, true],
+            _ => [false; 3],
         };
-        m &= !DRAWBUFFER;
-        if a.render_buffer != GR_BUFFER_FRONTBUFFER {
-            m |= DRAWBUFFER_BACK;
-        }
         let (rgb, alpha) = a.color_mask;
-        if rgb {
-            m |= RGBWRMASK;
-        } else {
-            m &= !RGBWRMASK;
-        }
-        if m & ENDEPTHBUFFER == 0 && self.num_buffers != 3 {
-            if alpha {
-                m |= ENALPHABUFFER | ZAWRMASK;
+        let mut m = FbzMode(self.fbi.fbz_mode)
+            .with_enable_chromakey(a.chromakey_mode == GR_CHROMAKEY_ENABLE)
+            .with_aux_buffer_mask(a.depth_mask)
+            .with_depth_function(CompareFunction::from_bits(a.depth_fn))
+            .with_enable_depthbuffer(depth)
+            .with_wbuffer_select(w)
+            .with_enable_depth_bias(bias)
+            .with_depth_source_compare(compare)
+            .with_enable_dithering(dither)
+            .with_dither_2x2(dither_2x2)
+            .with_dither_subtract(subtract)
+            .with_draw_buffer(if a.render_buffer != GR_BUFFER_FRONTBUFFER {
+                ColorBuffer::Back
             } else {
-                m &= !(ENALPHABUFFER | ZAWRMASK);
-            }
+                ColorBuffer::Front
+            })
+            .with_rgb_buffer_mask(rgb);
+        if !m.enable_depthbuffer() && self.num_buffers != 3 {
+            m = m
+                .with_enable_alpha_planes(alpha)
+                .with_aux_buffer_mask(alpha);
         }
-        if a.origin == GR_ORIGIN_LOWER_LEFT {
-            m |= YORIGIN;
-        } else {
-            m &= !YORIGIN;
-        }
-        self.fbi.fbz_mode = m;
+        self.fbi.fbz_mode = m.with_y_origin(a.origin == GR_ORIGIN_LOWER_LEFT).0;
     }
 
     /// The `clipLeftRight` / `clipLowYHighY` values for a window, clamped to the screen.
@@ -410,7 +362,14 @@ impl GlideState {
         let maxy = maxy.min(self.screen_height);
         let minx = minx.min(maxx);
         let miny = miny.min(maxy);
-        ((minx << 16) | maxx, (miny << 16) | maxy)
+        // Screen sizes stay below 1024, inside the 10-bit fields.
+        let lr = ClipLeftRight::default()
+            .with_clip_left(minx)
+            .with_clip_right(maxx);
+        let bt = ClipLowYHighY::default()
+            .with_clip_lowy(miny)
+            .with_clip_highy(maxy);
+        (lr.0, bt.0)
     }
 }
 
@@ -426,12 +385,9 @@ impl crate::Glide {
             if self.st.alpha_combine() {
                 self.hw.w(NOP_CMD, 0);
             }
-            let p = self.st.fbi.fbz_color_path;
-            self.st.fbi.fbz_color_path = if self.st.args.alpha_controls_itrgb {
-                p | LOCALSELECT_OVERRIDE_WITH_ATEX
-            } else {
-                p & !LOCALSELECT_OVERRIDE_WITH_ATEX
-            };
+            self.st.fbi.fbz_color_path = FbzColorPath(self.st.fbi.fbz_color_path)
+                .with_cc_localselect_override(self.st.args.alpha_controls_itrgb)
+                .0;
             if self.st.color_combine() {
                 self.hw.w(NOP_CMD, 0);
             }
@@ -454,26 +410,25 @@ impl crate::Glide {
             self.hw.w(CLIP_LOW_Y_HIGH_Y, bt);
         }
         if inv & dirty::ZA_COLOR != 0 {
-            let level = (self.st.args.depth_bias as i16) as u16 as u32;
-            self.st.fbi.za_color = (self.st.fbi.za_color & !0xffff) | level;
+            let level = (self.st.args.depth_bias as i16) as u16;
+            self.st.fbi.za_color = ZaColor(self.st.fbi.za_color).with_constant_depth(level).0;
             self.hw.w(ZA_COLOR, self.st.fbi.za_color);
         }
         if inv & dirty::FOG_MODE != 0 {
             let mode = self.st.args.fog_mode;
-            let mut f = self.st.fbi.fog_mode
-                & !(ENFOGGING | FOGADD | FOGMULT | FOG_ALPHA | FOG_Z | FOG_CONSTANT);
-            f |= match mode & 0xff {
-                GR_FOG_WITH_ITERATED_ALPHA_EXT => ENFOGGING | FOG_ALPHA,
-                GR_FOG_WITH_ITERATED_Z => ENFOGGING | FOG_Z,
-                GR_FOG_WITH_TABLE_ON_W => ENFOGGING,
-                _ => 0,
+            let (enable, za) = match mode & 0xff {
+                GR_FOG_WITH_ITERATED_ALPHA_EXT => (true, FogZa::IteratedAlpha),
+                GR_FOG_WITH_ITERATED_Z => (true, FogZa::IteratedZ),
+                GR_FOG_WITH_TABLE_ON_W => (true, FogZa::FogTable),
+                _ => (false, FogZa::FogTable),
             };
-            if mode & GR_FOG_MULT2 != 0 {
-                f |= FOGMULT;
-            }
-            if mode & GR_FOG_ADD2 != 0 {
-                f |= FOGADD;
-            }
+            let f = FogMode(self.st.fbi.fog_mode)
+                .with_enable_fog(enable)
+                .with_fog_za(za)
+                .with_fog_constant(false)
+                .with_fog_mult(mode & GR_FOG_MULT2 != 0)
+                .with_fog_add(mode & GR_FOG_ADD2 != 0)
+                .0;
             self.st.fbi.fog_mode = f;
             self.hw.w(FOG_MODE, f);
         }
@@ -482,19 +437,16 @@ impl crate::Glide {
             self.hw.w(FOG_COLOR, self.st.fbi.fog_color);
         }
         if inv & dirty::LFB_MODE != 0 {
-            let mut l = self.st.fbi.lfb_mode & !(3 << 9);
-            l |= (self.st.args.lfb_format & 3) << 9;
-            self.hw.w(LFB_MODE, l);
-            l &= !(LFB_WRITE_SWAP16 | LFB_WRITE_BYTESWAP);
+            // grLfbWriteColorFormat's GR_COLORFORMAT_* is the RGBA lane order.
+            let l = LfbMode(self.st.fbi.lfb_mode)
+                .with_rgba_lanes(RgbaLanes::from_bits(self.st.args.lfb_format));
+            self.hw.w(LFB_MODE, l.0);
             let (bytes, words) = self.st.args.lfb_swizzle;
-            if bytes {
-                l |= LFB_WRITE_BYTESWAP;
-            }
-            if words {
-                l |= LFB_WRITE_SWAP16;
-            }
-            self.hw.w(LFB_MODE, l);
-            self.st.fbi.lfb_mode = l;
+            let l = l
+                .with_byte_swizzle_writes(bytes)
+                .with_word_swap_writes(words);
+            self.hw.w(LFB_MODE, l.0);
+            self.st.fbi.lfb_mode = l.0;
         }
         if inv & dirty::C0C1 != 0 {
             let c = swizzle(self.st.args.constant_color, self.st.color_format);
@@ -552,6 +504,27 @@ impl crate::Glide {
         }
         self.hw.packer();
         self.update_param_index();
+    }
+}
+
+/// The `*_zero_other`, `*_sub_clocal`, `*_add_clocal` and `*_add_alocal` bits of a
+/// `GR_COMBINE_FUNCTION_*`, in that order (gglide.c; the texture combine of gtex.c
+/// uses the same table).
+pub(crate) fn combine_function_bits(f: u32) -> [bool; 4] {
+    const F: bool = false;
+    const T: bool = true;
+    match f {
+        GR_COMBINE_FUNCTION_ZERO => [T, F, F, F],
+        GR_COMBINE_FUNCTION_LOCAL => [T, F, T, F],
+        GR_COMBINE_FUNCTION_LOCAL_ALPHA => [T, F, F, T],
+        GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL => [F, F, T, F],
+        GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA => [F, F, F, T],
+        GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL => [F, T, F, F],
+        GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL => [F, T, T, F],
+        GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => [F, T, F, T],
+        GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL => [T, T, T, F],
+        GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => [T, T, F, T],
+        _ => [F; 4],
     }
 }
 

@@ -9,9 +9,9 @@
 //! the packer workaround write, as 3dfx's library does.
 
 use crate::consts::*;
-use crate::hw::bits::*;
 use crate::hw::{tmu_chip, TEX_BASE};
 use sst1_regs::addr::*;
+use sst1_regs::{TDetail, TLod, TcMselect, TextureFormat, TextureMode};
 
 /// A texture description (`GrTexInfo`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -35,23 +35,31 @@ const MIPMAP_SIZE: [[u32; 9]; 4] = [
     [0x10000, 0x4000, 0x1000, 0x400, 0x100, 0x40, 0x10, 0x4, 0x4],
 ];
 
-/// `tLOD` aspect field for aspect index 0 (8:1) .. 6 (1:8). Source: ditex.c.
-const ASPECT_XLATE: [u32; 7] = [
-    (3 << LOD_ASPECT_SHIFT) | LOD_S_IS_WIDER,
-    (2 << LOD_ASPECT_SHIFT) | LOD_S_IS_WIDER,
-    (1 << LOD_ASPECT_SHIFT) | LOD_S_IS_WIDER,
-    0,
-    1 << LOD_ASPECT_SHIFT,
-    2 << LOD_ASPECT_SHIFT,
-    3 << LOD_ASPECT_SHIFT,
+/// `tLOD` `lod_aspect` and `lod_s_is_wider` for aspect index 0 (8:1) .. 6 (1:8).
+/// Source: ditex.c.
+const ASPECT_XLATE: [(u32, bool); 7] = [
+    (3, true),
+    (2, true),
+    (1, true),
+    (0, false),
+    (1, false),
+    (2, false),
+    (3, false),
 ];
 
-/// `tLOD` odd/even split bits for `GR_MIPMAPLEVELMASK_*` (1 even, 2 odd, 3 both).
-fn even_odd_bits(mask: u32) -> u32 {
+/// `l` with the aspect fields of a `GR_ASPECT_LOG2_*`.
+fn with_aspect(l: TLod, aspect: i32) -> TLod {
+    let (log2, s_is_wider) = ASPECT_XLATE[aspect_index(aspect)];
+    l.with_lod_aspect(log2).with_lod_s_is_wider(s_is_wider)
+}
+
+/// `l` with the odd/even split bits of a `GR_MIPMAPLEVELMASK_*` (1 even, 2 odd, 3
+/// both) set; bits already set stay set, as in ditex.c's `|=`.
+fn with_even_odd(l: TLod, mask: u32) -> TLod {
     match mask {
-        GR_MIPMAPLEVELMASK_EVEN => LOD_TSPLIT,
-        GR_MIPMAPLEVELMASK_ODD => LOD_TSPLIT | LOD_ODD,
-        _ => 0,
+        GR_MIPMAPLEVELMASK_EVEN => l.with_lod_tsplit(true),
+        GR_MIPMAPLEVELMASK_ODD => l.with_lod_tsplit(true).with_lod_odd(true),
+        _ => l,
     }
 }
 
@@ -75,9 +83,18 @@ fn aspect_class(aspect: i32) -> usize {
     }
 }
 
-/// `tLOD` lodmin/lodmax fields (4.2 fixed point LODs).
-fn lod_minmax(min: u32, max: u32) -> u32 {
-    ((min << 2) & LODMIN) | ((max << 8) & LODMAX)
+/// `l` with the lodmin/lodmax fields (4.2 fixed point) set to whole LODs `min`, `max`.
+fn with_lod_minmax(l: TLod, min: u32, max: u32) -> TLod {
+    l.with_lodmin(min << 2).with_lodmax(max << 2)
+}
+
+/// Whether a `textureMode` is the odd pass of two-pass trilinear: trilinear on, zero
+/// other, blend by the LOD fraction, no reverse blend (then `tLOD` selects odd LODs).
+fn odd_trilinear_pass(m: TextureMode) -> bool {
+    m.trilinear()
+        && m.tc_zero_other()
+        && matches!(m.tc_mselect(), TcMselect::LodFrac)
+        && !m.tc_reverse_blend()
 }
 
 /// Offset of each LOD from the start of a full mipmap, and with odd/even split.
@@ -167,26 +184,20 @@ impl crate::Glide {
 
     /// `grTexClampMode`.
     pub(crate) fn tex_clamp(&mut self, tmu: usize, s: u32, t: u32) {
-        let mut m = self.st.tmu[tmu].texture_mode & !(TCLAMPS | TCLAMPT);
-        if s == GR_TEXTURECLAMP_CLAMP {
-            m |= TCLAMPS;
-        }
-        if t == GR_TEXTURECLAMP_CLAMP {
-            m |= TCLAMPT;
-        }
+        let m = TextureMode(self.st.tmu[tmu].texture_mode)
+            .with_tclamps(s == GR_TEXTURECLAMP_CLAMP)
+            .with_tclampt(t == GR_TEXTURECLAMP_CLAMP)
+            .0;
         self.tmu_write(tmu, &[(TEXTURE_MODE, m)]);
         self.st.tmu[tmu].texture_mode = m;
     }
 
     /// `grTexFilterMode`.
     pub(crate) fn tex_filter(&mut self, tmu: usize, min: u32, mag: u32) {
-        let mut m = self.st.tmu[tmu].texture_mode & !(TMINFILTER | TMAGFILTER);
-        if min == GR_TEXTUREFILTER_BILINEAR {
-            m |= TMINFILTER;
-        }
-        if mag == GR_TEXTUREFILTER_BILINEAR {
-            m |= TMAGFILTER;
-        }
+        let m = TextureMode(self.st.tmu[tmu].texture_mode)
+            .with_tminfilter(min == GR_TEXTUREFILTER_BILINEAR)
+            .with_tmagfilter(mag == GR_TEXTUREFILTER_BILINEAR)
+            .0;
         self.tmu_write(tmu, &[(TEXTURE_MODE, m)]);
         self.st.tmu[tmu].texture_mode = m;
     }
@@ -194,8 +205,7 @@ impl crate::Glide {
     /// `grTexLodBiasValue`: bias in quarter LODs, 6-bit two's complement.
     pub(crate) fn tex_lod_bias(&mut self, tmu: usize, bias: f32) {
         let quarters = ((bias + 0.125) / 0.25) as i32;
-        let fixed = (quarters as u32) & 0x3f;
-        let l = (self.st.tmu[tmu].t_lod & !LODBIAS) | (fixed << LODBIAS_SHIFT);
+        let l = TLod(self.st.tmu[tmu].t_lod).with_lodbias(quarters).0;
         self.tmu_write(tmu, &[(T_LOD, l)]);
         self.st.tmu[tmu].t_lod = l;
     }
@@ -203,9 +213,11 @@ impl crate::Glide {
     /// `grTexDetailControl`.
     pub(crate) fn tex_detail(&mut self, tmu: usize, lod_bias: i32, scale: u8, max: f32) {
         let dmax = (max * 255.0) as u32;
-        let d = (((lod_bias as u32) << 8) & (0x3f << 8))
-            | (dmax & 0xff)
-            | ((u32::from(scale) << 14) & (7 << 14));
+        let d = TDetail::default()
+            .with_detail_max(dmax)
+            .with_detail_bias(lod_bias)
+            .with_detail_scale(u32::from(scale))
+            .0;
         self.tmu_write(tmu, &[(T_DETAIL, d)]);
         self.st.tmu[tmu].t_detail = d;
     }
@@ -213,33 +225,22 @@ impl crate::Glide {
     /// `grTexMipMapMode`.
     pub(crate) fn tex_mipmap(&mut self, tmu: usize, mode: u32, lod_blend: bool) {
         let c = self.st.tmu[tmu];
-        let mut l = c.t_lod & !(LODMIN | LODMAX | LOD_ODD);
-        let mut m = c.texture_mode & !(TLODDITHER | TRILINEAR);
-        match mode {
-            GR_MIPMAP_DISABLE => l |= lod_minmax(c.large_lod, c.large_lod),
-            _ => {
-                if mode == GR_MIPMAP_NEAREST_DITHER && self.st.allow_lod_dither {
-                    m |= TLODDITHER;
-                }
-                l |= lod_minmax(c.large_lod, c.small_lod);
-            }
-        }
-        if lod_blend {
-            m |= TRILINEAR;
-            // Odd pass of two-pass trilinear: zero other, blend by LOD fraction,
-            // no reverse blend.
-            if m & TC_ZERO_OTHER != 0
-                && (m & TC_MSELECT) == (5 << TC_MSELECT_SHIFT)
-                && m & TC_REVERSE_BLEND == 0
-            {
-                l |= LOD_ODD;
-            }
-        }
-        l |= even_odd_bits(c.even_odd);
-        self.tmu_write(tmu, &[(T_LOD, l), (TEXTURE_MODE, m)]);
+        let small = if mode == GR_MIPMAP_DISABLE {
+            c.large_lod
+        } else {
+            c.small_lod
+        };
+        let dither = mode == GR_MIPMAP_NEAREST_DITHER && self.st.allow_lod_dither;
+        let m = TextureMode(c.texture_mode)
+            .with_tloddither(dither)
+            .with_trilinear(lod_blend);
+        let l =
+            with_lod_minmax(TLod(c.t_lod), c.large_lod, small).with_lod_odd(odd_trilinear_pass(m));
+        let l = with_even_odd(l, c.even_odd);
+        self.tmu_write(tmu, &[(T_LOD, l.0), (TEXTURE_MODE, m.0)]);
         self.st.tmu[tmu].mm_mode = mode;
-        self.st.tmu[tmu].t_lod = l;
-        self.st.tmu[tmu].texture_mode = m;
+        self.st.tmu[tmu].t_lod = l.0;
+        self.st.tmu[tmu].texture_mode = m.0;
     }
 
     /// `grTexCombine`.
@@ -254,68 +255,40 @@ impl crate::Glide {
         a_invert: bool,
     ) {
         let c = self.st.tmu[tmu];
-        let mut m = c.texture_mode & !TCOMBINE_ALL;
-        let mut l = c.t_lod & !LOD_ODD;
         let bit = 1u32 << tmu;
         self.st.tmu_mask &= !bit;
-        let mut uses_local = false;
-        m |= (rgb_factor & 7) << TC_MSELECT_SHIFT;
-        if rgb_factor & 8 == 0 {
-            m |= TC_REVERSE_BLEND;
-        }
-        if matches!(
-            rgb_factor & 7,
-            GR_COMBINE_FACTOR_LOCAL | GR_COMBINE_FACTOR_LOCAL_ALPHA
-        ) {
-            uses_local = true;
-        }
-        m |= (a_factor & 7) << TCA_MSELECT_SHIFT;
-        if a_factor & 8 == 0 {
-            m |= TCA_REVERSE_BLEND;
-        }
-        if matches!(
-            a_factor & 7,
-            GR_COMBINE_FACTOR_LOCAL | GR_COMBINE_FACTOR_LOCAL_ALPHA
-        ) {
-            uses_local = true;
-        }
-        if rgb_invert {
-            m |= TC_INVERT_OUTPUT;
-        }
-        if a_invert {
-            m |= TCA_INVERT_OUTPUT;
-        }
-        let (bits, local) = combine_bits(
-            rgb_fn,
-            [TC_ZERO_OTHER, TC_SUB_CLOCAL, TC_ADD_CLOCAL, TC_ADD_ALOCAL],
-        );
-        m |= bits;
-        uses_local |= local;
-        let (bits, local) = combine_bits(
-            a_fn,
-            [
-                TCA_ZERO_OTHER,
-                TCA_SUB_CLOCAL,
-                TCA_ADD_CLOCAL,
-                TCA_ADD_ALOCAL,
-            ],
-        );
-        m |= bits;
-        uses_local |= local;
-        if uses_local {
+        let is_local = |f: u32| {
+            matches!(
+                f & 7,
+                GR_COMBINE_FACTOR_LOCAL | GR_COMBINE_FACTOR_LOCAL_ALPHA
+            )
+        };
+        let ([zero, sub, add_c, add_a], rgb_local) = combine_bits(rgb_fn);
+        let ([a_zero, a_sub, a_add_c, a_add_a], a_local) = combine_bits(a_fn);
+        // Every tc_* and tca_* field (bits 29:12) is set here.
+        let m = TextureMode(c.texture_mode)
+            .with_tc_zero_other(zero)
+            .with_tc_sub_clocal(sub)
+            .with_tc_mselect(TcMselect::from_bits(rgb_factor))
+            .with_tc_reverse_blend(rgb_factor & 8 == 0)
+            .with_tc_add_clocal(add_c)
+            .with_tc_add_alocal(add_a)
+            .with_tc_invert_output(rgb_invert)
+            .with_tca_zero_other(a_zero)
+            .with_tca_sub_clocal(a_sub)
+            .with_tca_mselect(TcMselect::from_bits(a_factor))
+            .with_tca_reverse_blend(a_factor & 8 == 0)
+            .with_tca_add_clocal(a_add_c)
+            .with_tca_add_alocal(a_add_a)
+            .with_tca_invert_output(a_invert);
+        if is_local(rgb_factor) || is_local(a_factor) || rgb_local || a_local {
             self.st.tmu_mask |= bit;
         }
-        if m & TRILINEAR != 0
-            && m & TC_ZERO_OTHER != 0
-            && (m & TC_MSELECT) == (5 << TC_MSELECT_SHIFT)
-            && m & TC_REVERSE_BLEND == 0
-        {
-            l |= LOD_ODD;
-        }
-        l |= even_odd_bits(c.even_odd);
-        self.tmu_write(tmu, &[(TEXTURE_MODE, m), (T_LOD, l)]);
-        self.st.tmu[tmu].texture_mode = m;
-        self.st.tmu[tmu].t_lod = l;
+        let l = TLod(c.t_lod).with_lod_odd(odd_trilinear_pass(m));
+        let l = with_even_odd(l, c.even_odd);
+        self.tmu_write(tmu, &[(TEXTURE_MODE, m.0), (T_LOD, l.0)]);
+        self.st.tmu[tmu].texture_mode = m.0;
+        self.st.tmu[tmu].t_lod = l.0;
         self.update_param_index();
     }
 
@@ -328,22 +301,20 @@ impl crate::Glide {
         c.large_lod = large;
         c.even_odd = even_odd;
         let base = base_address(start, large, info.aspect, info.format, even_odd) >> 3;
-        let m = (c.texture_mode & !TFORMAT)
-            | ((info.format & 0xf) << TFORMAT_SHIFT)
-            | TPERSP_ST
-            | TCLAMPW;
-        let mut l =
-            c.t_lod & !(LODMIN | LODMAX | LOD_ASPECT | LOD_TSPLIT | LOD_ODD | LOD_S_IS_WIDER);
-        l |= lod_minmax(
-            large,
-            if c.mm_mode == GR_MIPMAP_DISABLE {
-                large
-            } else {
-                small
-            },
-        );
-        l |= even_odd_bits(even_odd);
-        l |= ASPECT_XLATE[aspect_index(info.aspect)];
+        let m = TextureMode(c.texture_mode)
+            .with_format(TextureFormat::from_bits(info.format))
+            .with_tpersp_st(true)
+            .with_tclampw(true)
+            .0;
+        let smallest = if c.mm_mode == GR_MIPMAP_DISABLE {
+            large
+        } else {
+            small
+        };
+        let l = with_lod_minmax(TLod(c.t_lod), large, smallest)
+            .with_lod_tsplit(false)
+            .with_lod_odd(false);
+        let l = with_aspect(with_even_odd(l, even_odd), info.aspect).0;
         c.st_scale = match info.aspect {
             3 => [256.0, 32.0],
             2 => [256.0, 64.0],
@@ -361,12 +332,7 @@ impl crate::Glide {
 
     /// `grTexMultibase`.
     pub(crate) fn tex_multibase_hw(&mut self, tmu: usize, enable: bool) {
-        let mut l = self.st.tmu[tmu].t_lod;
-        if enable {
-            l |= TMULTIBASEADDR;
-        } else {
-            l &= !TMULTIBASEADDR;
-        }
+        let l = TLod(self.st.tmu[tmu].t_lod).with_tmultibaseaddr(enable).0;
         self.tmu_write(tmu, &[(T_LOD, l)]);
         self.st.tmu[tmu].t_lod = l;
     }
@@ -394,10 +360,9 @@ impl crate::Glide {
     /// `grTexNCCTable`: select NCC table 0 or 1 on every TMU.
     pub(crate) fn tex_ncc_table(&mut self, table: u32) {
         for t in 0..self.st.tmu.len() {
-            let mut m = self.st.tmu[t].texture_mode & !TNCCSELECT;
-            if table != 0 {
-                m |= TNCCSELECT;
-            }
+            let m = TextureMode(self.st.tmu[t].texture_mode)
+                .with_tnccselect(table != 0)
+                .0;
             self.tmu_write(t, &[(TEXTURE_MODE, m)]);
             self.st.tmu[t].texture_mode = m;
         }
@@ -432,14 +397,13 @@ impl crate::Glide {
         let wide = format >= GR_TEXFMT_16BIT;
         let base = base_address(start, large_hw, aspect, format, even_odd) >> 3;
         let lod_base = TEX_BASE + ((tmu as u32) << 21) + (this_hw << 17);
-        let mut l = lod_minmax(large_hw, 8);
-        l |= even_odd_bits(even_odd);
-        l |= ASPECT_XLATE[aspect_index(aspect)];
-        let mut m = (format & 0xf) << TFORMAT_SHIFT;
-        let seq8 = self.st.tmu[tmu].texture_mode & SEQ_8_DOWNLD != 0;
-        if seq8 {
-            m |= SEQ_8_DOWNLD;
-        }
+        let l = with_lod_minmax(TLod::default(), large_hw, 8);
+        let l = with_aspect(with_even_odd(l, even_odd), aspect).0;
+        let seq8 = TextureMode(self.st.tmu[tmu].texture_mode).seq_8_downld();
+        let m = TextureMode::default()
+            .with_format(TextureFormat::from_bits(format))
+            .with_seq_8_downld(seq8)
+            .0;
         self.tmu_write(tmu, &[(TEX_BASE_ADDR, base), (TEXTURE_MODE, m), (T_LOD, l)]);
 
         let word = |i: usize| -> u32 {
@@ -555,23 +519,11 @@ impl crate::Glide {
     }
 }
 
-/// The combine-unit bits and whether the local colour is used, for
-/// `[zero_other, sub_clocal, add_clocal, add_alocal]`.
-fn combine_bits(f: u32, b: [u32; 4]) -> (u32, bool) {
-    let [zero, sub, addc, adda] = b;
-    match f {
-        GR_COMBINE_FUNCTION_ZERO => (zero, false),
-        GR_COMBINE_FUNCTION_LOCAL => (zero | addc, true),
-        GR_COMBINE_FUNCTION_LOCAL_ALPHA => (zero | adda, true),
-        GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL => (addc, true),
-        GR_COMBINE_FUNCTION_SCALE_OTHER_ADD_LOCAL_ALPHA => (adda, true),
-        GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL => (sub, true),
-        GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL => (sub | addc, true),
-        GR_COMBINE_FUNCTION_SCALE_OTHER_MINUS_LOCAL_ADD_LOCAL_ALPHA => (sub | adda, true),
-        GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL => (zero | sub | addc, true),
-        GR_COMBINE_FUNCTION_SCALE_MINUS_LOCAL_ADD_LOCAL_ALPHA => (zero | sub | adda, true),
-        _ => (0, false),
-    }
+/// The combine-unit bits `[zero_other, sub_clocal, add_clocal, add_alocal]` of a
+/// `GR_COMBINE_FUNCTION_*`, and whether it uses the local colour (it subtracts or adds it).
+fn combine_bits(f: u32) -> ([bool; 4], bool) {
+    let bits = crate::state::combine_function_bits(f);
+    (bits, !matches!(bits, [_, false, false, false]))
 }
 
 #[cfg(test)]

@@ -19,7 +19,10 @@
 //! factor, clamp 0..FF); MAME `combine_texture` and DOSBox Staging `TEXTURE_PIPELINE` agree on
 //! every step. 86Box also agrees for a single TMU.
 //!
-//! Colours are `[r, g, b, a]` arrays so that this crate has no dependencies.
+//! The register fields are read through `sst1_regs`' [`TextureMode`] and [`TDetail`]
+//! views; colours are `[r, g, b, a]` arrays.
+
+use sst1_regs::{TDetail, TextureMode};
 
 /// Index of the alpha channel in a `[r, g, b, a]` colour.
 const A: usize = 3;
@@ -87,34 +90,42 @@ pub struct UnitControl {
 }
 
 impl UnitControl {
-    /// Decodes the seven control bits starting at `shift` (12 for `tc_*`, 21 for `tca_*`).
+    /// Combines the decoded `*_add_clocal` / `*_add_alocal` bits of one unit.
     ///
     /// For the RGB unit both add bits set add nothing (MAME and DOSBox treat the 2-bit field
     /// value 3 as reserved; 86Box adds `c_local`). For the alpha unit either bit adds the
     /// local alpha (MAME and DOSBox: any non-zero value).
-    const fn decode(mode: u32, shift: u32, alpha: bool) -> Self {
-        let f = mode >> shift;
-        let add_bits = (f >> 6) & 3;
-        let add = if alpha {
-            if add_bits != 0 {
-                AddLocal::ALocal
-            } else {
-                AddLocal::None
-            }
-        } else {
-            match add_bits {
-                1 => AddLocal::CLocal,
-                2 => AddLocal::ALocal,
-                _ => AddLocal::None,
-            }
-        };
+    const fn add(add_clocal: bool, add_alocal: bool, alpha: bool) -> AddLocal {
+        match (add_clocal, add_alocal) {
+            (false, false) => AddLocal::None,
+            _ if alpha => AddLocal::ALocal,
+            (true, false) => AddLocal::CLocal,
+            (false, true) => AddLocal::ALocal,
+            (true, true) => AddLocal::None,
+        }
+    }
+
+    /// The colour units' controls (`tc_*`, `textureMode` bits 20:12).
+    const fn rgb(m: TextureMode) -> Self {
         Self {
-            zero_other: f & 1 != 0,
-            sub_clocal: f & 2 != 0,
-            mselect: MSelect::from_bits(f >> 2),
-            reverse_blend: f & 0x20 != 0,
-            add,
-            invert_output: f & 0x100 != 0,
+            zero_other: m.tc_zero_other(),
+            sub_clocal: m.tc_sub_clocal(),
+            mselect: MSelect::from_bits(m.tc_mselect() as u32),
+            reverse_blend: m.tc_reverse_blend(),
+            add: Self::add(m.tc_add_clocal(), m.tc_add_alocal(), false),
+            invert_output: m.tc_invert_output(),
+        }
+    }
+
+    /// The alpha unit's controls (`tca_*`, `textureMode` bits 29:21).
+    const fn alpha(m: TextureMode) -> Self {
+        Self {
+            zero_other: m.tca_zero_other(),
+            sub_clocal: m.tca_sub_clocal(),
+            mselect: MSelect::from_bits(m.tca_mselect() as u32),
+            reverse_blend: m.tca_reverse_blend(),
+            add: Self::add(m.tca_add_clocal(), m.tca_add_alocal(), true),
+            invert_output: m.tca_invert_output(),
         }
     }
 }
@@ -145,10 +156,11 @@ pub struct Factors {
 impl TextureCombine {
     /// Decodes the combine fields of a `textureMode` value.
     pub const fn from_texture_mode(mode: u32) -> Self {
+        let m = TextureMode(mode);
         Self {
-            rgb: UnitControl::decode(mode, 12, false),
-            alpha: UnitControl::decode(mode, 21, true),
-            trilinear: mode & (1 << 30) != 0,
+            rgb: UnitControl::rgb(m),
+            alpha: UnitControl::alpha(m),
+            trilinear: m.trilinear(),
         }
     }
 
@@ -302,13 +314,14 @@ pub enum DetailRule {
 /// [`DetailRule`] says what the bias and the LOD are.
 #[doc(alias = "tDetail")]
 pub fn detail_factor(t_detail: u32, lod: i32, rule: DetailRule) -> u8 {
-    let detail_max = (t_detail & 0xff) as i32;
-    let field = (t_detail >> 8) & 0x3f;
-    let signed = ((field << 26) as i32) >> 26;
-    let scale = (t_detail >> 14) & 7;
+    let d = TDetail(t_detail);
+    let detail_max = d.detail_max() as i32;
+    let signed = d.detail_bias();
+    let scale = d.detail_scale();
     let (bias, lod) = match rule {
         DetailRule::WholeLods | DetailRule::WholeLodsCut8 => (signed << 8, lod),
-        DetailRule::IntegerLod => (field as i32, lod >> 8),
+        // The 6-bit field read unsigned: its two's complement bits.
+        DetailRule::IntegerLod => (signed & 0x3f, lod >> 8),
     };
     if bias <= lod {
         return 0;
