@@ -2,11 +2,11 @@
 //! the LFB and texture regions, and PCI configuration space (spec 6).
 
 use crate::box86;
-use crate::chain::Chain;
 use crate::diagnostics::Diagnostic;
 use crate::model::{with_model, ChipModel};
 use crate::Board;
 use pixelfx::{Command, NoTexture};
+use sst1_chain::Chain;
 use sst1_regs::{addr, map, RegisterBus};
 
 /// Start of the linear frame buffer region.

@@ -12,7 +12,6 @@
 
 mod box86;
 mod bus;
-mod chain;
 mod diagnostics;
 pub mod model;
 pub mod presets;

@@ -134,7 +134,7 @@ macro_rules! register {
         #[derive(Clone, Copy, PartialEq, Eq, Default, Hash)]
         pub struct $name(pub u32);
 
-        paste::paste! {
+        pastey::paste! {
             impl $name {
                 $(
                     $(#[$fm])*

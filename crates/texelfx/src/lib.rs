@@ -5,14 +5,14 @@
 //!
 //! For each pixel a TMU iterates S/W, T/W and 1/W, divides for perspective, computes the
 //! LOD, fetches and filters texels from its own memory, then merges the result with the
-//! upstream TMU's output in its texture combine unit ([`sst1_chain`]); TMU 0's output goes
+//! upstream TMU's output in its texture combine unit (module [`combine`]); TMU 0's output goes
 //! to the FBI. Stages, in hardware order:
 //!
 //! 1. iterators ([`Tmu::texel`]): `start + dx * d/dx + dy * d/dy`, S/T 14.18 and W 2.30,
 //!    kept as 64-bit values with 32 fraction bits as the references do;
 //! 2. coordinates, LOD, fetch and filter (modules `sample`, `lod`);
 //! 3. texel decode (module `format`, NCC in [`sst1_ncc`]);
-//! 4. texture combine ([`sst1_chain`]).
+//! 4. texture combine (module [`combine`]).
 //!
 //! Texture memory is laid out as module `layout` describes and written by module
 //! `download`. Texels are decoded one LOD at a time on first use into a cache (module
@@ -23,6 +23,7 @@
 
 mod box86;
 mod cache;
+pub mod combine;
 mod download;
 mod format;
 mod layout;
@@ -30,10 +31,10 @@ mod lod;
 mod sample;
 
 use cache::TexelCache;
+pub use combine::DetailRule;
+use combine::{detail_factor, Factors, TextureCombine};
 use layout::Layout;
 use sample::SpanRecip;
-pub use sst1_chain::DetailRule;
-use sst1_chain::{detail_factor, Factors, TextureCombine};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
 
@@ -147,7 +148,7 @@ pub enum ChainModel {
     /// TMU the texel passes with no combine at all; with two, TMU 0's texel alone when its
     /// mode is the local decal (`textureMode & 0x00643000 == 0x00241000`), TMU 1's texel
     /// alone when TMU 0's combine bits are all zero, else TMU 1 through
-    /// [`sst1_chain::TextureCombine::combine_box86_upstream`] and TMU 0's full combine. A
+    /// [`combine::TextureCombine::combine_box86_upstream`] and TMU 0's full combine. A
     /// third TMU is not read.
     Box86,
 }
@@ -275,7 +276,7 @@ pub enum PerspDivide {
 /// Whether `invert_output` applies when a TMU's combine passes its own texel through
 /// (`zero_other`, no `sub_clocal`, add `c_local` / `a_local` in both units: Glide's
 /// "decal" with the invert bits set, see
-/// [`sst1_chain::TextureCombine::is_local_identity`]).
+/// [`combine::TextureCombine::is_local_identity`]).
 ///
 /// MAME (which reduces the mode to a plain texel fetch) and 86Box (which fetches only the
 /// local texel for that register pattern) output the texel unchanged: the default. DOSBox
