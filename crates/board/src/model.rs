@@ -106,20 +106,15 @@ impl TexelModel for Custom {
 }
 
 /// The model a board runs, chosen at run time.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Model {
     /// [`Hardware`].
+    #[default]
     Hardware,
     /// The model of one reference emulator ([`Mame`], [`DosboxStaging`], [`Box86`]).
     Reference(Reference),
     /// [`Custom`] with this profile (what `--profile FILE` runs).
     Custom(AccuracyProfile),
-}
-
-impl Default for Model {
-    fn default() -> Self {
-        Model::Hardware
-    }
 }
 
 impl Model {

@@ -20,10 +20,7 @@ impl Fbi {
     pub fn fastfill<M: PixelModel>(&mut self) {
         self.stats.fastfills += 1;
         let mode = self.fbz_mode();
-        let cl = self.reg(addr::CLIP_LEFT_RIGHT);
-        let cy = self.reg(addr::CLIP_LOW_Y_HIGH_Y);
-        let (left, right) = (((cl >> 16) & 0x3ff) as i32, (cl & 0x3ff) as i32);
-        let (low, high) = (((cy >> 16) & 0x3ff) as i32, (cy & 0x3ff) as i32);
+        let (left, right, low, high) = self.clip_rect();
         let dest = if mode.rgb_buffer_mask() {
             self.colour_buffer(mode.draw_buffer())
         } else {

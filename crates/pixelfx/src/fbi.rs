@@ -7,7 +7,10 @@
 
 use sst1_dither::Dither;
 use sst1_fog::FogTable;
-use sst1_regs::{addr, ColorBuffer, FbiInit1, FbiInit2, FbiInit3, FbzMode, VideoDimensions};
+use sst1_regs::{
+    addr, map, ClipLeftRight, ClipLowYHighY, ColorBuffer, FbiInit1, FbiInit2, FbiInit3, FbzMode,
+    VideoDimensions,
+};
 
 use crate::fb::FrameBuffer;
 use crate::model::PixelModel;
@@ -92,6 +95,20 @@ impl Fbi {
         FbzMode(self.reg(addr::FBZ_MODE))
     }
 
+    /// The clip rectangle `(left, right, low_y, high_y)` of `clipLeftRight` and
+    /// `clipLowYHighY` (spec 5.21: left and low inclusive, right and high exclusive).
+    #[inline]
+    pub fn clip_rect(&self) -> (i32, i32, i32, i32) {
+        let x = ClipLeftRight(self.reg(addr::CLIP_LEFT_RIGHT));
+        let y = ClipLowYHighY(self.reg(addr::CLIP_LOW_Y_HIGH_Y));
+        (
+            x.clip_left() as i32,
+            x.clip_right() as i32,
+            y.clip_lowy() as i32,
+            y.clip_highy() as i32,
+        )
+    }
+
     /// The Y origin subtraction value (`fbiInit3[31:22]`).
     #[inline]
     pub fn y_origin(&self) -> i32 {
@@ -132,11 +149,12 @@ impl Fbi {
                     self.stats.clear_hardware();
                 }
             }
-            // Masks of the bits the SST-1 implements (spec 5 register table "Bits").
-            addr::FBZ_COLOR_PATH => self.regs[idx] = value & 0x0fff_ffff,
-            addr::FOG_MODE => self.regs[idx] = value & 0x3f,
-            addr::FBZ_MODE => self.regs[idx] = value & 0x001f_ffff,
-            addr::LFB_MODE => self.regs[idx] = value & 0x0001_ffff,
+            // The mode registers keep only the bits the SST-1 implements (spec 5 register
+            // table "Bits"), so that a drawing state is the same whatever a driver writes
+            // into reserved bits (`crate::specialize` keys on the stored values).
+            addr::FBZ_COLOR_PATH | addr::FOG_MODE | addr::FBZ_MODE | addr::LFB_MODE => {
+                self.regs[idx] = value & map::mask_of(offset)
+            }
             addr::FOG_TABLE..=addr::FOG_TABLE_LAST => self
                 .fog_table
                 .write(((offset - addr::FOG_TABLE) / 4) as usize, value),

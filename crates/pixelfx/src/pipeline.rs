@@ -60,9 +60,7 @@ impl DrawState {
         use sst1_regs::addr;
         let profile = M::pixel(&fbi.profile());
         let mode = fbi.fbz_mode();
-        let cl = fbi.reg(addr::CLIP_LEFT_RIGHT);
-        let cy = fbi.reg(addr::CLIP_LOW_Y_HIGH_Y);
-        let mut right = (cl & 0x3ff) as i32;
+        let (left, mut right, low, high) = fbi.clip_rect();
         if profile.clip_right == ClipRightEdge::DropLastColumn {
             right -= 1;
         }
@@ -92,12 +90,7 @@ impl DrawState {
             za_color: fbi.reg(addr::ZA_COLOR),
             fog_color: Rgba::from_argb(fbi.reg(addr::FOG_COLOR)),
             stipple: fbi.reg(addr::STIPPLE),
-            clip: (
-                ((cl >> 16) & 0x3ff) as i32,
-                right,
-                ((cy >> 16) & 0x3ff) as i32,
-                (cy & 0x3ff) as i32,
-            ),
+            clip: (left, right, low, high),
             dest,
             aux: fbi.fb.aux_base(),
             dither,

@@ -22,7 +22,7 @@
 //! --dump-raster-stats [TRACE-FILTER...]` prints the keys of the replayed triangles in
 //! the table's own syntax, most pixels first.
 
-use sst1_regs::addr;
+use sst1_regs::{addr, map};
 
 use crate::fbi::Fbi;
 use crate::model::{PixelModel, Walker};
@@ -40,13 +40,13 @@ pub const LIVE: Known = 0;
 /// The bits of each register that an exact key covers. The FBI masks unimplemented bits
 /// on write (spec 5 register table), so these are all the bits `fbzColorPath`, `fogMode`
 /// and `fbzMode` can hold; `alphaMode` leaves out [`ALPHA_REF_BITS`].
-pub const COLOR_PATH_BITS: u32 = 0x0fff_ffff;
+pub const COLOR_PATH_BITS: u32 = map::mask_of(addr::FBZ_COLOR_PATH);
 /// See [`COLOR_PATH_BITS`].
-pub const ALPHA_MODE_BITS: u32 = !ALPHA_REF_BITS;
+pub const ALPHA_MODE_BITS: u32 = map::mask_of(addr::ALPHA_MODE) & !ALPHA_REF_BITS;
 /// See [`COLOR_PATH_BITS`].
-pub const FOG_MODE_BITS: u32 = 0x3f;
+pub const FOG_MODE_BITS: u32 = map::mask_of(addr::FOG_MODE);
 /// See [`COLOR_PATH_BITS`].
-pub const FBZ_MODE_BITS: u32 = 0x001f_ffff;
+pub const FBZ_MODE_BITS: u32 = map::mask_of(addr::FBZ_MODE);
 
 /// The `alphaMode` bits that are never part of a key: `alpha_ref` (bits 31:24) is only a
 /// comparison operand, cheap to read at run time, and varies between otherwise equal
@@ -214,6 +214,14 @@ specialised! {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn key_masks_are_the_spec_tables() {
+        assert_eq!(COLOR_PATH_BITS, 0x0fff_ffff);
+        assert_eq!(ALPHA_MODE_BITS, 0x00ff_ffff);
+        assert_eq!(FOG_MODE_BITS, 0x3f);
+        assert_eq!(FBZ_MODE_BITS, 0x001f_ffff);
+    }
 
     #[test]
     fn known_bits_combine_with_live_bits() {

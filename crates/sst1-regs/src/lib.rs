@@ -14,6 +14,7 @@
 
 pub mod addr;
 pub mod color;
+pub mod float;
 pub mod map;
 pub mod types;
 

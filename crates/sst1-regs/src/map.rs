@@ -323,6 +323,21 @@ pub fn desc_of(offset: u32) -> Option<&'static RegDesc> {
     REGISTERS.get(usize::from(i))
 }
 
+/// The mask of the valid data bits of the register at `offset` (bits 9:2 used; 0 for a
+/// reserved word), usable in constants: the one place the spec table's "Bits" column is
+/// turned into masks.
+pub const fn mask_of(offset: u32) -> u32 {
+    let index = addr::index(offset);
+    let mut i = 0;
+    while i < TABLE.len() {
+        if (TABLE[i].offset / 4) as usize == index {
+            return TABLE[i].mask();
+        }
+        i += 1;
+    }
+    0
+}
+
 /// The spec name of the register at `offset` (bits 9:2 used), `"reserved"` for gaps.
 pub fn name_of(offset: u32) -> &'static str {
     desc_of(offset).map_or("reserved", |d| d.name)

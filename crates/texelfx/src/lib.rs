@@ -452,29 +452,10 @@ pub struct Tmu {
     span: SpanRecip,
 }
 
-/// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero.
-///
-/// Source: MAME `float_to_int64(data, 32)` (used for `fstartS` .. `fdWdY` on the TMUs);
-/// DOSBox and 86Box (`(int64_t)(f * 2^32)`) keep the same 32 fraction bits.
+/// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero
+/// ([`sst1_regs::float::float_to_fixed64`], the FBI's converter).
 fn float_to_fx32(data: u32) -> Fx32 {
-    let exponent = ((data >> 23) & 0xff) as i32 - 127 - 23 + 32;
-    let mantissa = i64::from((data & 0x7f_ffff) | 0x80_0000);
-    let magnitude = if exponent < 0 {
-        if exponent > -64 {
-            mantissa >> -exponent
-        } else {
-            0
-        }
-    } else if exponent < 64 {
-        mantissa.wrapping_shl(exponent as u32)
-    } else {
-        i64::MAX
-    };
-    if data & 0x8000_0000 != 0 {
-        magnitude.wrapping_neg()
-    } else {
-        magnitude
-    }
+    sst1_regs::float::float_to_fixed64(data, 32)
 }
 
 impl Tmu {
