@@ -6,13 +6,15 @@
 //! constants, so an instance of the pipeline for it holds only its own behaviour:
 //!
 //! * [`Hardware`]: the hardware model, our reading of the SST-1 ([`AccuracyProfile::HARDWARE`],
-//!   docs/accuracy.md). What programs run, what `voodoo replay` shows. It alone offers
-//!   the specialised walkers (`pixelfx::specialize`).
+//!   docs/accuracy.md). What programs run, what `voodoo replay` shows.
 //! * [`Mame`], [`DosboxStaging`], [`Box86`]: the three reference emulators
 //!   ([`Reference::profile`]), instruments for judging the hardware model against their
 //!   goldens; `--model vote` votes them.
 //! * [`Custom`]: the profile held at run time (`--profile FILE`), every switch tested
 //!   per pixel. For experiments; slow.
+//!
+//! The four fixed models offer the specialised walkers (`pixelfx::specialize`), each
+//! compiled with its own switches; the custom model runs the generic walker.
 //!
 //! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
 //! ([`with_model!`]): the match on the model runs once per bus access, never inside a
@@ -74,15 +76,18 @@ fixed_model!(
 );
 fixed_model!(
     /// MAME as a model.
-    Mame = Reference::Mame.profile()
+    Mame = Reference::Mame.profile(),
+    specialised = table_walker
 );
 fixed_model!(
     /// DOSBox Staging as a model.
-    DosboxStaging = Reference::DosboxStaging.profile()
+    DosboxStaging = Reference::DosboxStaging.profile(),
+    specialised = table_walker
 );
 fixed_model!(
     /// 86Box as a model.
-    Box86 = Reference::Box86.profile()
+    Box86 = Reference::Box86.profile(),
+    specialised = table_walker
 );
 
 /// The model of `--profile FILE`: the profile the chips hold at run time, every switch

@@ -59,9 +59,9 @@ use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 /// (DOSBox Staging's `>> 8`, 86Box's `/ 255`). A chip with two 8x9-bit multipliers, each
 /// truncated, and one adder computes it. Measured over every dump of both suites
 /// (conformance + glide-sdk, consensus + majority misses, every other switch at the
-/// hardware model's): `PerProduct` 36 + 184,161 and 5 + 34,597; `Mame` 25 + 298,349 and
-/// 5 + 49,415. MAME's leaves 11 fewer consensus pixels but 129 k more majority ones;
-/// those 11 are listed in `traces/hardware-budget.toml`. (The per-pixel vote of the
+/// hardware model's): `PerProduct` 36 + 184,161 and 5 + 34,597; `Mame` 52 + 298,512 and
+/// 5 + 49,415 (185 + 299,034 on the conformance suite with MAME's own widening of
+/// 2x2-dithered destinations too). (The per-pixel vote of the
 /// three arithmetics that this project used before, which no chip computes, left
 /// 33 + 121,807 and 5 + 3,197; `--model vote` still votes whole boards.)
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]

@@ -11,9 +11,10 @@
 //!
 //! [`table_walker`] gives the walker for a triangle: the entry of [`SPECIALISED`] whose
 //! key equals the triangle's [`RasterKey`], otherwise none (the model's generic walker
-//! runs). Only the hardware model offers the table ([`PixelModel::specialised`]). A key holds every
-//! bit the FBI stores (only `alphaMode.alpha_ref` is left out and read at run time), so a
-//! specialised walker computes with exactly the values the reference reads.
+//! runs). A model offers the table through [`PixelModel::specialised`] (the board's
+//! fixed models do; the run-time-profile model does not). A key holds every bit the FBI
+//! stores (only `alphaMode.alpha_ref` is left out and read at run time), so a
+//! specialised walker computes with exactly the values the generic walker reads.
 //! `crates/board/tests/generic_vs_fast.rs` replays every trace both ways and requires
 //! identical buffers and counters; `Board::set_reference` / [`Fbi::set_reference`]
 //! force the generic walker.

@@ -346,7 +346,7 @@ const KNOWN_FAILURES_HEADER: &str = "\
 # `UPDATE_KNOWN_FAILURES=1 cargo test -p sst1-trace --test conformance` rewrites this file
 # from the results, keeping the reasons already written.
 # The dumps are the per-pixel vote of the three reference profiles
-# (sst1_trace::execute_references); traces/hardware-budget.toml pins the single board.
+# (sst1_trace::execute_references); traces/hardware-budget.toml pins the hardware model.
 ";
 
 const REFERENCE_GAPS_HEADER: &str = "\
@@ -493,15 +493,15 @@ fn hardware_budget() -> &'static BTreeMap<String, Budget> {
 }
 
 const HARDWARE_BUDGET_HEADER: &str = "\
-# The hardware model's misses: one board with the default accuracy profile
-# (sst1_board::Board, AccuracyProfile::default(); what sst1_trace::execute replays and
-# `voodoo replay --model single` runs), judged with the pass rule of
+# The hardware model's misses: one board running sst1_board::model::Hardware
+# (AccuracyProfile::HARDWARE, the default; what sst1_trace::execute replays and
+# `voodoo replay` runs), judged with the pass rule of
 # traces/conformance/README.md on every dump of traces/conformance and traces/glide-sdk.
 # One table per dump that misses any pixel, named \"suite/trace/buffer\" (suite:
 # conformance or glide-sdk; trace/buffer after the golden file):
 #   consensus  pixels where all goldens agree and the hardware model differs
 #   majority   pixels where two goldens agree and the hardware model differs
-#   reason     why: the documented deviation (docs/accuracy.md, \"Where the single board
+#   reason     why: the documented deviation (docs/accuracy.md, \"Where the hardware model
 #              departs from the majority\") or \"Not yet explained: \" and what was seen
 # crates/trace/tests/conformance.rs fails when a dump's consensus or majority count grows
 # above its entry, when a dump without an entry misses a pixel, and when a listed dump
