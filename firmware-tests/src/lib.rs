@@ -140,6 +140,30 @@ impl Port for Emulator {
     }
 }
 
+/// The texture set-up the texel tests share.
+pub mod texture {
+    use sst1_regs::{FbzColorPath, RgbSelect, TextureFormat, TextureMode};
+
+    /// Start of the texture region of the aperture (spec 4).
+    pub const TEX_BASE: u32 = 0x80_0000;
+    /// `textureMode` format RGB565 (bits 11:8 = 10); point sampling, no perspective.
+    pub const TEX_565: u32 = TextureMode(0).with_format(TextureFormat::Rgb565).0;
+    /// `textureMode` decal: `tc_zero_other` + `tc_add_clocal`, `tca_zero_other` +
+    /// `tca_add_alocal` (bits 12, 18, 21, 28); format 0 (RGB332), point sampled (OR
+    /// another format into bits 11:8).
+    pub const DECAL: u32 = TextureMode(0)
+        .with_tc_zero_other(true)
+        .with_tc_add_clocal(true)
+        .with_tca_zero_other(true)
+        .with_tca_add_alocal(true)
+        .0;
+    /// `fbzColorPath`: colour from the texture, texturing on (bit 27).
+    pub const COLOR_PATH_TEXTURE: u32 = FbzColorPath(0)
+        .with_cc_rgbselect(RgbSelect::Texture)
+        .with_texture_enable(true)
+        .0;
+}
+
 /// Bits of the mode registers that the programs set, named after the spec's fields.
 ///
 /// Each value is built with the typed views' `with_*` setters from `sst1_regs` (the one

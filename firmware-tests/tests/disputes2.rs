@@ -20,7 +20,7 @@ use firmware_tests::{
 use pixelfx::profile::{AlphaTestInput, FloatOverflow, LfbWordSwap, PatternRow, SubpixelZ};
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
-use sst1_regs::{addr, FbzColorPath, RgbSelect, TLod, TcMselect, TextureFormat, TextureMode};
+use sst1_regs::{addr, FbzColorPath, TLod, TcMselect, TextureMode};
 
 const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
 
@@ -314,23 +314,7 @@ fn lfb_word_swap_never() {
 
 // --- texel switches -------------------------------------------------------------------
 
-/// Start of the texture region of the aperture (spec 4).
-const TEX_BASE: u32 = 0x80_0000;
-/// `textureMode` format RGB565 (bits 11:8 = 10); point sampling, no perspective.
-const TEX_565: u32 = TextureMode(0).with_format(TextureFormat::Rgb565).0;
-/// `textureMode` decal: `tc_zero_other` + `tc_add_clocal`, `tca_zero_other` +
-/// `tca_add_alocal` (bits 12, 18, 21, 28).
-const DECAL: u32 = TextureMode(0)
-    .with_tc_zero_other(true)
-    .with_tc_add_clocal(true)
-    .with_tca_zero_other(true)
-    .with_tca_add_alocal(true)
-    .0;
-/// `fbzColorPath`: colour from the texture, texturing on (bit 27).
-const COLOR_PATH_TEXTURE: u32 = FbzColorPath(0)
-    .with_cc_rgbselect(RgbSelect::Texture)
-    .with_texture_enable(true)
-    .0;
+use firmware_tests::texture::{COLOR_PATH_TEXTURE, DECAL, TEX_565, TEX_BASE};
 
 /// A board with the 2 x 2 level LOD 7 of a 256 x 256 RGB565 texture at base 0, texels
 /// `[t][s]`, `tLOD` = `t_lod` and `textureMode` = `mode`, then a flat triangle with

@@ -22,9 +22,7 @@ use pixelfx::profile::{
 };
 use pixelfx::PixelProfile;
 use sst1_board::AccuracyProfile;
-use sst1_regs::{
-    addr, AlphaLocalSelect, FbzColorPath, RgbSelect, TLod, TextureFormat, TextureMode,
-};
+use sst1_regs::{addr, AlphaLocalSelect, FbzColorPath, RgbSelect, TLod, TextureMode};
 use texelfx::{ChainModel, FilterSelect, Rgb332Blue, TexelProfile};
 
 const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
@@ -137,24 +135,7 @@ fn param_origin_rounded_vertex() {
 
 // --- RGB332 blue: Rgb332Blue ------------------------------------------------------------
 
-/// Start of the texture region of the aperture (spec 4).
-const TEX_BASE: u32 = 0x80_0000;
-/// `textureMode` decal: `tc_zero_other` + `tc_add_clocal`, `tca_zero_other` +
-/// `tca_add_alocal` (bits 12, 18, 21, 28); format 0 (RGB332), point sampled (OR another
-/// format into bits 11:8).
-const DECAL_RGB332: u32 = TextureMode(0)
-    .with_tc_zero_other(true)
-    .with_tc_add_clocal(true)
-    .with_tca_zero_other(true)
-    .with_tca_add_alocal(true)
-    .0;
-/// `fbzColorPath`: colour from the texture, texturing on (bit 27).
-const COLOR_PATH_TEXTURE: u32 = FbzColorPath(0)
-    .with_cc_rgbselect(RgbSelect::Texture)
-    .with_texture_enable(true)
-    .0;
-/// `textureMode` format RGB565 (bits 11:8 = 10).
-const TEX_565: u32 = TextureMode(0).with_format(TextureFormat::Rgb565).0;
+use firmware_tests::texture::{COLOR_PATH_TEXTURE, DECAL as DECAL_RGB332, TEX_565, TEX_BASE};
 /// `tLOD` with `lodmin` = `lodmax` = LOD 7 (28 in 4.2 fixed point, spec 5.51).
 const LOD_7: u32 = TLod(0).with_lodmin(28).with_lodmax(28).0;
 

@@ -17,7 +17,7 @@
 //! compiled with its own switches; the custom model runs the generic walker.
 //!
 //! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
-//! ([`with_model!`]): the match on the model runs once per bus access, never inside a
+//! (`with_model!`): the match on the model runs once per bus access, never inside a
 //! stage.
 
 use pixelfx::{PixelModel, PixelProfile, TexelSource, Walker};

@@ -51,7 +51,7 @@ pub struct Fbi {
     pub(crate) dither: Dither,
     /// Toggled on each status read so that drivers waiting for retrace make progress.
     vretrace: bool,
-    /// Force the reference (unspecialised) triangle walker; see [`Fbi::set_reference`].
+    /// Force the reference (unspecialised) triangle walker; see [`Fbi::set_generic_path`].
     pub(crate) generic_path: bool,
 }
 

@@ -39,7 +39,7 @@ impl Fbi {
     /// Draw the triangle held in the parameter registers (the `triangleCMD` command).
     /// The caller has applied subpixel correction if `fbzColorPath` asks for it.
     ///
-    /// Unless [`Fbi::set_reference`] forced the generic path, a walker specialised for
+    /// Unless [`Fbi::set_generic_path`] forced the generic path, a walker specialised for
     /// the triangle's mode registers is used when [`crate::specialize`] has one.
     ///
     /// `M` is the model of the chip ([`crate::model`]); the caller guarantees that the

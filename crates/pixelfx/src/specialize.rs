@@ -16,7 +16,7 @@
 //! stores (only `alphaMode.alpha_ref` is left out and read at run time), so a
 //! specialised walker computes with exactly the values the generic walker reads.
 //! `crates/board/tests/generic_vs_fast.rs` replays every trace both ways and requires
-//! identical buffers and counters; `Board::set_reference` / [`Fbi::set_reference`]
+//! identical buffers and counters; `Board::set_generic_path` / [`Fbi::set_generic_path`]
 //! force the generic walker.
 //!
 //! To find candidates for the table: `cargo bench -p sst1-board --bench replay --

@@ -4,7 +4,7 @@
 //! The hardware reads texels from its memory for every pixel; decoding them again for
 //! every pixel (and for every one of the four bilinear neighbours) costs more than reading
 //! a decoded copy. A level is decoded with the same fetch the uncached path uses
-//! ([`crate::Tmu::set_reference`] turns the cache off), so both give identical texels:
+//! ([`crate::Tmu::set_generic_path`] turns the cache off), so both give identical texels:
 //! `crates/board/tests/generic_vs_fast.rs` replays every trace both ways.
 //!
 //! A cached level is dropped exactly when something it was decoded from changes:

@@ -615,7 +615,7 @@ impl Tmu {
     /// The FBI is about to shade `len` pixels from offset `(dx, dy)` (as in [`Tmu::texel`])
     /// rightwards: computes their perspective factors in one loop (see `SpanRecip`).
     /// Optional; texels are the same without it. The generic path
-    /// ([`Tmu::set_reference`]) skips it.
+    /// ([`Tmu::set_generic_path`]) skips it.
     pub fn begin_span<M: TexelModel>(&mut self, dx: i32, dy: i32, len: usize) {
         let profile = M::texel(&self.profile);
         let persp = TextureMode(self.texture_mode).tpersp_st();
