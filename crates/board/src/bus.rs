@@ -4,6 +4,7 @@
 use crate::box86;
 use crate::diagnostics::Diagnostic;
 use crate::model::{with_model, ChipModel};
+use crate::timing::TriangleWork;
 use crate::Board;
 use pixelfx::{Command, NoTexture};
 use sst1_chain::Chain;
@@ -71,8 +72,11 @@ impl Board {
         match self.fbi.write_reg::<M>(offset, value) {
             Command::None => {}
             Command::Triangle => self.triangle::<M>(),
-            Command::Fastfill => self.fbi.fastfill::<M>(),
-            Command::Swap => self.fbi.swap(),
+            Command::Fastfill => self.fastfill::<M>(),
+            Command::Swap => {
+                self.fbi.swap();
+                self.timing.swap();
+            }
         }
     }
 
@@ -82,6 +86,7 @@ impl Board {
         let init3 = sst1_regs::FbiInit3(self.fbi.reg(addr::FBI_INIT3));
         let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
         let profile = M::pixel(&self.fbi.profile());
+        let before = self.fbi.stats;
         // ParamOrigin::RoundedVertex (86Box): the correction lasts this triangle only.
         let saved = (cp.param_adjust() && !profile.param_origin.writes_back())
             .then(|| box86::StartRegisters::save(&self.fbi, &self.tmus));
@@ -108,6 +113,30 @@ impl Board {
         if let Some(saved) = saved {
             saved.restore(&mut self.fbi, &mut self.tmus);
         }
+        let after = self.fbi.stats;
+        let am = sst1_regs::AlphaMode(self.fbi.reg(addr::ALPHA_MODE));
+        self.timing.triangle(TriangleWork {
+            pixels: after.pixels_in.wrapping_sub(before.pixels_in),
+            spans: after.spans.wrapping_sub(before.spans),
+            subpixel: cp.param_adjust(),
+            textured: texturing,
+            read_modify_write: self.fbi.fbz_mode().enable_depthbuffer() || am.alpha_blend_enable(),
+        });
+    }
+
+    /// Run a FASTFILL command (spec 5.23) and charge its time.
+    fn fastfill<M: ChipModel>(&mut self) {
+        let mode = self.fbi.fbz_mode();
+        let (left, right, low, high) = self.fbi.clip_rect();
+        let rows = (high - low).max(0) as u64;
+        let writes = mode.rgb_buffer_mask() || mode.aux_buffer_mask();
+        let pixels = if writes {
+            rows * (right - left).max(0) as u64
+        } else {
+            0
+        };
+        self.fbi.fastfill::<M>();
+        self.timing.fastfill(pixels, if writes { rows } else { 0 });
     }
 
     fn write_texture(&mut self, bus_addr: u32, value: u32) {
@@ -123,6 +152,7 @@ impl Board {
 impl Board {
     /// A bus write, run by model `M` (the board's).
     fn write32_as<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
+        self.timing.write();
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             self.write_register::<M>(bus_addr, value);

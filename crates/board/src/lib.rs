@@ -8,7 +8,8 @@
 //!   0x800000-0xffffff  texture    --bits 22:21-->   TMU0..2
 //! ```
 //! Commands run to completion inside the write that starts them: the emulated board is
-//! always idle when the host looks.
+//! always idle when the host looks. [`timing`] counts the graphics-clock cycles the real
+//! board would have taken (docs/timing.md).
 
 mod box86;
 mod bus;
@@ -16,6 +17,7 @@ mod diagnostics;
 pub mod model;
 pub mod presets;
 pub mod reference;
+pub mod timing;
 
 use serde::{Deserialize, Serialize};
 
@@ -25,6 +27,7 @@ pub use model::Model;
 pub use pixelfx::{PixelProfile, Stats};
 pub use reference::{vote, Reference};
 pub use texelfx::{TexelProfile, Tmu};
+pub use timing::{FrameTime, Timing};
 
 use pixelfx::Fbi;
 
@@ -105,6 +108,8 @@ pub struct Board {
     diagnostics: Diagnostics,
     /// The model the chips run (their profiles are its profile).
     model: Model,
+    /// The modelled hardware time.
+    timing: Timing,
 }
 
 impl Board {
@@ -121,7 +126,14 @@ impl Board {
             init_enable: 0,
             diagnostics: Diagnostics::default(),
             model: Model::Hardware,
+            timing: Timing::default(),
         }
+    }
+
+    /// How long the real board would have taken so far (graphics-clock cycles, per frame;
+    /// see [`timing`]).
+    pub fn timing(&self) -> &Timing {
+        &self.timing
     }
 
     /// The board configuration.

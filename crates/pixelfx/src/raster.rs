@@ -111,6 +111,7 @@ impl Fbi {
             let (mut start, mut stop) = (span.start, span.stop);
             // Every pixel the walker visits counts as "in" (spec 5.31), clipped or not.
             self.stats.pixels_in += (stop - start) as u64;
+            self.stats.spans += 1;
             let scry = self.screen_y(span.y, flip);
             if mode.enable_clipping() {
                 let (left, right, low, high) = st.clip;

@@ -39,6 +39,9 @@ pub struct Stats {
     pub fastfills: u64,
     /// SWAPBUFFER commands executed.
     pub swaps: u64,
+    /// Scanline spans the triangle walker visited (rows with at least one pixel, clipped
+    /// or not): what the timing model charges per row.
+    pub spans: u64,
 }
 
 impl Stats {

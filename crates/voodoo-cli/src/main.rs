@@ -62,11 +62,13 @@ enum Command {
         /// times the work, on three threads).
         #[arg(long, value_enum)]
         model: Option<Model>,
-        /// Print the pixel and command counters at the end (with `--model vote`: those
-        /// of the MAME-model board).
+        /// Print the pixel and command counters at the end, and the modelled hardware
+        /// time in graphics-clock cycles, in all and per frame (docs/timing.md; with
+        /// `--model vote`: those of the MAME-model board).
         #[arg(long)]
         stats: bool,
-        /// Write the counters as JSON to this file.
+        /// Write the counters as JSON to this file, with `clock_hz`, `cycles` and
+        /// `frames` (one object per swap with its `cycles`).
         #[arg(long, value_name = "FILE")]
         stats_json: Option<PathBuf>,
         /// Accuracy profile as JSON (at most 1 MiB) for experiments on a one-board model:
@@ -327,13 +329,26 @@ fn write_front_png(replayed: &Replayed, path: &Path) -> Result<(u32, u32), Strin
 }
 
 /// The counters `--stats` prints: the board's own statistics (spec 5.31-5.35, kept
-/// without the hardware registers' 24-bit wrap) and command counts.
-struct Stats(sst1_board::Stats);
+/// without the hardware registers' 24-bit wrap), command counts, and the modelled
+/// hardware time (`sst1_board::timing`).
+struct Stats(sst1_board::Stats, sst1_board::Timing);
 
 impl Stats {
     fn to_json(&self) -> serde_json::Value {
         let s = &self.0;
+        let t = &self.1;
+        let frame = |f: &sst1_board::FrameTime| {
+            serde_json::json!({
+                "cycles": f.cycles,
+                "triangles": f.triangles,
+                "fills": f.fills,
+                "bus_bound": f.bus_bound,
+            })
+        };
         serde_json::json!({
+            "clock_hz": t.clock_hz,
+            "cycles": t.cycles(),
+            "frames": t.frames.iter().map(frame).collect::<Vec<_>>(),
             "pixels_in": s.pixels_in,
             "chroma_fail": s.chroma_fail,
             "zfunc_fail": s.zfunc_fail,
@@ -421,9 +436,26 @@ fn replay(
         println!("wrote {} ({w}x{h})", png.display());
     }
     if stats || stats_json.is_some() {
-        let s = Stats(board.stats());
+        let s = Stats(board.stats(), board.timing().clone());
         if stats {
             let c = &s.0;
+            let t = &s.1;
+            let ms = |cycles: u64| cycles as f64 * 1000.0 / t.clock_hz as f64;
+            println!(
+                "hardware     {} cycles at {} MHz ({:.3} ms)",
+                t.cycles(),
+                t.clock_hz / 1_000_000,
+                ms(t.cycles())
+            );
+            for (i, f) in t.frames.iter().enumerate() {
+                println!(
+                    "frame {i:<6} {:.3} ms: triangles {:.3}, fills {:.3}, bus-bound {:.3}",
+                    ms(f.cycles),
+                    ms(f.triangles),
+                    ms(f.fills),
+                    ms(f.bus_bound)
+                );
+            }
             println!("pixels in    {}", c.pixels_in);
             println!("chroma fail  {}", c.chroma_fail);
             println!("zfunc fail   {}", c.zfunc_fail);

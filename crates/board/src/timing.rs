@@ -1,0 +1,254 @@
+//! How long the real board would have taken: a count of graphics-clock cycles per
+//! command, calibrated to the spec's performance table (spec section 2).
+//!
+//! The host's writes reach the chip through the PCI bus and its 64-entry FIFO; the
+//! graphics engine drains the FIFO and runs each command. The two overlap, so a command
+//! costs the longer of the two: the bus time of the writes that fed it, and the engine
+//! time of the command itself.
+//!
+//! * **Bus:** every 32-bit write takes [`PCI_CLOCKS_PER_WRITE`] graphics clocks. The
+//!   spec's numbers assume "the PCI Bus master is supplying data at its peak bandwidth":
+//!   one write per 33 MHz PCI clock (zero-wait-state writes, spec 3), 1.5 clocks of the
+//!   50 MHz graphics clock. This is what limits small triangles: a flat 10-pixel
+//!   triangle is 15 writes (22.5 clocks; the spec's 1911 Ktriangles/s is 26 clocks), a
+//!   textured one over 30.
+//! * **Triangle engine:** setup ([`SETUP_CLOCKS`], [`SETUP_SUBPIXEL_CLOCKS`]: "7 clocks to
+//!   16 clocks" with subpixel correction, spec 5.16's `fbzColorPath` bit 26 note; at
+//!   least [`TEXTURE_SETUP_CLOCKS`] for a textured triangle) overlaps the rasterisation
+//!   of the triangle before ("the triangle setup engine is separately pipelined from the
+//!   triangle rasterization engine", the same note), so a triangle costs the longer of
+//!   its setup and its rasterisation: [`RASTER_CLOCKS`] to start, [`SPAN_CLOCKS`] per
+//!   scanline span and, per pixel, [`PIXEL_CLOCKS`] plus [`RMW_PIXEL_CLOCKS`] when the
+//!   pixel reads the frame buffer back (depth test or alpha blending: a read-modify-write
+//!   of the 64-bit interleaved memory).
+//! * **FASTFILL:** two pixels per clock (spec 3: "for screen/depth-buffer clears, two
+//!   pixels are written per clock") plus [`FILL_ROW_CLOCKS`] per row, fitted to the spec's
+//!   3.45 ms for a 640x480 clear.
+//!
+//! The constants are in 1/16 clock so that the fits need no floating point; the count is
+//! exact and the same on every run (it depends only on the writes, never on the host).
+//! `firmware-tests/tests/timing.rs` builds the spec's scenes and checks every row of its
+//! table; docs/timing.md shows the table.
+
+use serde::Serialize;
+
+/// Graphics clock of the boards the spec's table assumes.
+pub const DEFAULT_CLOCK_HZ: u64 = 50_000_000;
+
+/// The cycle constants' unit: 1/16 graphics clock.
+const SUB: u64 = 16;
+
+/// Bus time of one 32-bit write (1.5 clocks: 50 MHz over 33.3 MHz).
+pub const PCI_CLOCKS_PER_WRITE: u64 = 24;
+/// Triangle setup without subpixel correction (7 clocks).
+pub const SETUP_CLOCKS: u64 = 7 * SUB;
+/// Triangle setup with subpixel correction (16 clocks).
+pub const SETUP_SUBPIXEL_CLOCKS: u64 = 16 * SUB;
+/// Setup of a textured triangle (the TMU's S, T, W and LOD set-up): fitted to the spec's
+/// textured rows, whose 10- and 25-pixel rates are the same (828 and 823 Ktriangles/s,
+/// about 60 clocks a triangle, more than their bus time).
+pub const TEXTURE_SETUP_CLOCKS: u64 = 58 * SUB;
+/// Start of a triangle's rasterisation (the raster pipeline filling), fitted.
+pub const RASTER_CLOCKS: u64 = 184;
+/// Per scanline span: the edge walk's step to the next row, fitted.
+pub const SPAN_CLOCKS: u64 = 6;
+/// Per pixel: one pixel per clock (spec 3), plus the memory's page misses (fitted to
+/// the 1000-pixel rows).
+pub const PIXEL_CLOCKS: u64 = 19;
+/// Per pixel that reads the destination (depth test or alpha blending), fitted.
+pub const RMW_PIXEL_CLOCKS: u64 = 3;
+/// Per FASTFILL row, on top of two pixels per clock.
+pub const FILL_ROW_CLOCKS: u64 = 630;
+
+/// Where one frame's (or the whole replay's) modelled time went, in graphics clocks.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct FrameTime {
+    /// Total cycles.
+    pub cycles: u64,
+    /// Cycles of triangle commands.
+    pub triangles: u64,
+    /// Cycles of FASTFILL commands.
+    pub fills: u64,
+    /// Cycles where the bus, not the engine, was the limit (included in the above).
+    pub bus_bound: u64,
+}
+
+impl FrameTime {
+    fn add(&mut self, o: &FrameTime) {
+        self.cycles += o.cycles;
+        self.triangles += o.triangles;
+        self.fills += o.fills;
+        self.bus_bound += o.bus_bound;
+    }
+}
+
+/// The most frames [`Timing`] keeps one by one; later frames still count in the totals.
+pub const MAX_FRAMES: usize = 100_000;
+
+/// The board's modelled time.
+#[derive(Clone, Debug, Serialize)]
+pub struct Timing {
+    /// Graphics clock in Hz.
+    pub clock_hz: u64,
+    /// The whole replay so far.
+    pub total: FrameTime,
+    /// One entry per SWAPBUFFER, the first [`MAX_FRAMES`] of them.
+    pub frames: Vec<FrameTime>,
+    /// The frame being drawn (since the last swap).
+    #[serde(skip)]
+    current: FrameTime,
+    /// Bus time (1/16 clock) of the writes since the last command.
+    #[serde(skip)]
+    pending_bus: u64,
+    /// Sub-clock remainder carried between commands (1/16 clock).
+    #[serde(skip)]
+    fraction: u64,
+}
+
+impl Default for Timing {
+    fn default() -> Self {
+        Self {
+            clock_hz: DEFAULT_CLOCK_HZ,
+            total: FrameTime::default(),
+            frames: Vec::new(),
+            current: FrameTime::default(),
+            pending_bus: 0,
+            fraction: 0,
+        }
+    }
+}
+
+/// What a triangle command did, for its cost.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TriangleWork {
+    /// Pixels the walker visited.
+    pub pixels: u64,
+    /// Scanline spans it visited.
+    pub spans: u64,
+    /// Subpixel correction on.
+    pub subpixel: bool,
+    /// Texturing on.
+    pub textured: bool,
+    /// Depth test or alpha blending: every pixel reads the destination.
+    pub read_modify_write: bool,
+}
+
+impl Timing {
+    /// A 32-bit write crossed the bus.
+    #[inline]
+    pub(crate) fn write(&mut self) {
+        self.pending_bus += PCI_CLOCKS_PER_WRITE;
+    }
+
+    /// A triangle command ran.
+    pub(crate) fn triangle(&mut self, w: TriangleWork) {
+        let mut setup = if w.subpixel {
+            SETUP_SUBPIXEL_CLOCKS
+        } else {
+            SETUP_CLOCKS
+        };
+        if w.textured {
+            setup = setup.max(TEXTURE_SETUP_CLOCKS);
+        }
+        let per_pixel = PIXEL_CLOCKS
+            + if w.read_modify_write {
+                RMW_PIXEL_CLOCKS
+            } else {
+                0
+            };
+        let raster = RASTER_CLOCKS + w.spans * SPAN_CLOCKS + w.pixels * per_pixel;
+        let engine = setup.max(raster);
+        let (cycles, bus_bound) = self.command(engine);
+        self.current.triangles += cycles;
+        self.current.bus_bound += bus_bound;
+    }
+
+    /// A FASTFILL of `rows` rows of `pixels` pixels in all ran.
+    pub(crate) fn fastfill(&mut self, pixels: u64, rows: u64) {
+        let engine = pixels * SUB / 2 + rows * FILL_ROW_CLOCKS;
+        let (cycles, bus_bound) = self.command(engine);
+        self.current.fills += cycles;
+        self.current.bus_bound += bus_bound;
+    }
+
+    /// A SWAPBUFFER ended the frame.
+    pub(crate) fn swap(&mut self) {
+        let (cycles, _) = self.command(0);
+        self.current.cycles += cycles;
+        let frame = std::mem::take(&mut self.current);
+        self.total.add(&frame);
+        if self.frames.len() < MAX_FRAMES {
+            self.frames.push(frame);
+        }
+    }
+
+    /// The cost (whole clocks) of a command whose engine time is `engine` (1/16 clock),
+    /// overlapped with the bus time of the writes that fed it; and the part of it by
+    /// which the bus was the longer.
+    fn command(&mut self, engine: u64) -> (u64, u64) {
+        let bus = std::mem::take(&mut self.pending_bus);
+        let sub = bus.max(engine) + self.fraction;
+        self.fraction = sub % SUB;
+        let cycles = sub / SUB;
+        self.current.cycles += cycles;
+        let bus_bound = bus.saturating_sub(engine) / SUB;
+        (cycles, bus_bound)
+    }
+
+    /// Cycles modelled so far, the frame in progress included.
+    pub fn cycles(&self) -> u64 {
+        self.total.cycles + self.current.cycles
+    }
+
+    /// The frame in progress (since the last swap).
+    pub fn current_frame(&self) -> FrameTime {
+        self.current
+    }
+
+    /// Seconds the modelled board took so far.
+    pub fn seconds(&self) -> f64 {
+        self.cycles() as f64 / self.clock_hz as f64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn commands_cost_the_longer_of_bus_and_engine() {
+        let mut t = Timing::default();
+        // 10 writes (15 clocks of bus) feed a 10-pixel, 4-span flat triangle:
+        // setup 7 clocks, rasterisation (184 + 4 * 6 + 10 * 19) / 16 = 24.875 clocks.
+        for _ in 0..10 {
+            t.write();
+        }
+        let flat = TriangleWork {
+            pixels: 10,
+            spans: 4,
+            ..TriangleWork::default()
+        };
+        t.triangle(flat);
+        assert_eq!(t.cycles(), 24); // 398 / 16, 14/16 carried
+                                    // 40 writes (60 clocks) for a textured 1-pixel triangle: bus bound (setup 58).
+        for _ in 0..40 {
+            t.write();
+        }
+        t.triangle(TriangleWork {
+            pixels: 1,
+            spans: 1,
+            subpixel: true,
+            textured: true,
+            read_modify_write: true,
+        });
+        assert_eq!(t.cycles(), 24 + 60); // (960 + 14) / 16 = 60, 14/16 carried
+        assert_eq!(t.current_frame().bus_bound, 2);
+        t.swap();
+        assert_eq!(t.frames.len(), 1);
+        assert_eq!(t.frames[0].cycles, 84);
+        assert_eq!(t.total.triangles, 84);
+        // A 640x480 clear: 153,600 clocks of pixels and 480 rows of 39.375.
+        t.fastfill(640 * 480, 480);
+        assert_eq!(t.current_frame().fills, 153_600 + 18_900);
+    }
+}
