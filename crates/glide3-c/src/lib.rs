@@ -1210,8 +1210,8 @@ pub struct GrLfbInfo {
 }
 
 /// `grLfbLock`: the pointer is a host shadow; a read lock fills it from the board,
-/// a write lock sends the words that changed when unlocked.
-/// UNVERIFIED/limitation: words written with the value they already held are not sent.
+/// a write lock starts as the locked buffer and sends the words that changed when
+/// unlocked (see `fill_from_buffer`).
 #[no_mangle]
 pub unsafe extern "C" fn grLfbLock(
     ty: u32,
@@ -1247,7 +1247,21 @@ pub unsafe extern "C" fn grLfbLock(
             let write = slot == 1;
             let shadow = p.lfb[slot].get_or_insert_with(LfbShadow::new);
             shadow.words.fill(0);
-            if !write || li.stride_in_bytes == 2048 {
+            if write {
+                // What the locked buffer holds now, in the lock's layout, read from the
+                // board without a bus access: unlock sends the words the program
+                // changed from it. A store of the value a word already holds is not
+                // sent (UNVERIFIED: 3dfx's library writes the aperture directly, so the
+                // hardware sees every store; only pipelined LFB writes, which blend or
+                // depth-test, can tell).
+                fill_from_buffer(
+                    &mut shadow.words,
+                    &c.board,
+                    buffer as u32,
+                    li.stride_in_bytes,
+                );
+                shadow.initial.copy_from_slice(&shadow.words);
+            } else {
                 // Fill what the program can see from the board (16-bit layout).
                 let (w, h) = c.glide.screen_size();
                 let (w, h) = glide::lfb::clip_to_window(0, 0, w.div_ceil(2), h);
@@ -1256,9 +1270,6 @@ pub unsafe extern "C" fn grLfbLock(
                         shadow.words[y * 512 + x] = c.glide.lfb_read32((y * 2048 + x * 4) as u32);
                     }
                 }
-            }
-            if write {
-                shadow.initial.copy_from_slice(&shadow.words);
             }
             // SAFETY: checked non-null above.
             unsafe {
@@ -1270,6 +1281,38 @@ pub unsafe extern "C" fn grLfbLock(
             1
         })
     })
+}
+
+/// Fills a write lock's shadow with what `buffer` (`GR_BUFFER_*`) holds, in the layout
+/// of the lock's stride: two 16-bit pixels a word (2048 bytes a row), or one pixel a
+/// word (4096 bytes a row) as 888 with the high bits of each 565 channel replicated
+/// and alpha 0xff.
+fn fill_from_buffer(words: &mut [u32], board: &SharedBoard, buffer: u32, stride: u32) {
+    let kind = match buffer {
+        glide::consts::GR_BUFFER_FRONTBUFFER => BufferKind::Front,
+        glide::consts::GR_BUFFER_BACKBUFFER => BufferKind::Back,
+        _ => BufferKind::Aux,
+    };
+    let board = board.0.borrow();
+    let (dw, dh) = board.display_size();
+    let (w, h) = glide::lfb::clip_to_window(0, 0, dw, dh);
+    let px = board.dump_buffer(kind);
+    for y in 0..h as usize {
+        for x in 0..w as usize {
+            let Some(&p) = px.get(y * dw as usize + x) else {
+                return;
+            };
+            if stride == 2048 {
+                let word = &mut words[y * 512 + x / 2];
+                *word |= u32::from(p) << (16 * (x & 1));
+            } else {
+                let p = u32::from(p);
+                let (r, g, b) = ((p >> 11) & 0x1f, (p >> 5) & 0x3f, p & 0x1f);
+                let (r, g, b) = (r << 3 | r >> 2, g << 2 | g >> 4, b << 3 | b >> 2);
+                words[y * 1024 + x] = 0xff00_0000 | r << 16 | g << 8 | b;
+            }
+        }
+    }
 }
 
 /// `grLfbUnlock`: a write lock's changed words reach the board first. An unlock that
