@@ -241,6 +241,7 @@ impl TextureCombine {
 }
 
 /// One channel of the combine unit.
+#[inline]
 fn channel(
     u: &UnitControl,
     ch: usize,
@@ -313,6 +314,7 @@ pub enum DetailRule {
 /// "LOD clamp"). `detail_scale` (bits 16:14) is a left shift, `detail_max` (bits 7:0) 0.8;
 /// [`DetailRule`] says what the bias and the LOD are.
 #[doc(alias = "tDetail")]
+#[inline]
 pub fn detail_factor(t_detail: u32, lod: i32, rule: DetailRule) -> u8 {
     let d = TDetail(t_detail);
     let detail_max = d.detail_max() as i32;

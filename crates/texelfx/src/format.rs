@@ -52,11 +52,13 @@ fn expand(v: u32, bits: u32) -> u8 {
 }
 
 /// Packs `[r, g, b, a]` as `0xAARRGGBB`.
+#[inline]
 pub(crate) fn to_argb([r, g, b, a]: [u8; 4]) -> u32 {
     u32::from_be_bytes([a, r, g, b])
 }
 
 /// Unpacks `0xAARRGGBB` to `[r, g, b, a]`.
+#[inline]
 pub(crate) fn to_rgba(argb: u32) -> [u8; 4] {
     let [a, r, g, b] = argb.to_be_bytes();
     [r, g, b, a]

@@ -50,6 +50,7 @@ const DITHER_4X4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], 
 
 /// log2 of a non-negative value with `frac_bits` fractional bits, as 24.8, from the double's
 /// exponent and its top 7 mantissa bits (MAME `fast_log2`). Negative values give 0.
+#[inline]
 fn log2_mame(value: f64, frac_bits: i32) -> i32 {
     if value < 0.0 {
         return 0;
@@ -61,6 +62,7 @@ fn log2_mame(value: f64, frac_bits: i32) -> i32 {
 
 /// log2 of an integer as 24.8 from its top 9 significant bits (86Box `fastlog`); zero and
 /// values with bit 63 set give `i32::MIN`.
+#[inline]
 fn log2_86box(val: u64) -> i32 {
     if val == 0 || val & (1 << 63) != 0 {
         return i32::MIN;
@@ -102,6 +104,7 @@ fn reciplog_table() -> &'static [[u32; 2]; RECIPLOG_STEPS + 1] {
 /// [`reciplog_table`] with the 8 mantissa bits below the table index. Only bits 47:0 of
 /// the magnitude count (bits 47:32 set: bits 47:16 are used). Zero gives the largest
 /// reciprocal and a log of 1000.0.
+#[inline]
 pub(crate) fn reciplog_dosbox(value: i64) -> (i64, i32) {
     let neg = value < 0;
     let mag = value.wrapping_abs() as u64;
@@ -138,6 +141,7 @@ pub(crate) fn reciplog_dosbox(value: i64) -> (i64, i32) {
 
 /// Converts a double to i32 as x86 `cvttsd2si` does (truncation; NaN and out-of-range give
 /// `i32::MIN`), which is what the C++ references compiled to.
+#[inline]
 pub(crate) fn f64_to_i32_x86(v: f64) -> i32 {
     if !(-2_147_483_648.0..2_147_483_648.0).contains(&v) {
         i32::MIN
@@ -199,6 +203,7 @@ pub(crate) struct PixelLod {
 
 /// The per-pixel LOD change (8.8) of perspective texturing: `log2(1 / W)` of the pixel's
 /// iterated W (.32), at the precision of `calc`.
+#[inline]
 pub(crate) fn w_term(calc: LodCalc, w: i64) -> i32 {
     match calc {
         LodCalc::Mame => log2_mame(w as f64, 32).wrapping_neg(),
@@ -213,6 +218,7 @@ pub(crate) fn w_term(calc: LodCalc, w: i64) -> i32 {
 }
 
 /// Final 8.8 LOD of one pixel, clamped to `[lodmin, min(lodmax, 8.0)]`.
+#[inline]
 pub(crate) fn pixel_lod(
     calc: LodCalc,
     dither: LodDither,

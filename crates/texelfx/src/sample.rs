@@ -330,6 +330,7 @@ impl SpanRecip {
 /// 86Box's 1/W for the perspective divide: `2^48 / W` in unsigned 64-bit integers, with W
 /// .32 (so the quotient is 1/W as .16). A negative W is a huge unsigned divisor and gives
 /// 0, as does W = 0. Source: 86Box `voodoo_tmu_fetch`.
+#[inline]
 pub(crate) fn box86_oow(iterw: i64) -> i64 {
     if iterw == 0 {
         0
@@ -347,6 +348,7 @@ pub(crate) fn box86_oow(iterw: i64) -> i64 {
 ///
 /// INACCURATE: the `<< 4` wraps for coordinates of 2^23 texels or more, where 86Box keeps
 /// the sign of its .4 value; only clamped coordinates can then differ.
+#[inline]
 pub(crate) fn box86_divide(v: i64, oow: i64) -> i32 {
     let st = (v.wrapping_add(1 << 13) >> 14)
         .wrapping_mul(oow)
@@ -373,6 +375,7 @@ fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
 ///
 /// Clamping pins both to 0 below the texture and both to the last texel at or beyond it
 /// (MAME `fetch_texel`; DOSBox clamps each one, which gives the same pair).
+#[inline]
 fn neighbours(c: i32, max: i32, clamp: bool) -> (u32, u32) {
     let (mut c0, mut c1) = (c, c.wrapping_add(1));
     if clamp {
