@@ -338,6 +338,11 @@ pub fn init_640x480(port: &mut impl Port) {
     }
 }
 
+/// Status reads enough for what these programs queue to finish: the board keeps drawing
+/// while the host polls, and a read takes 4.5 graphics clocks in the timing model, so
+/// this is 0.36 s of board time (a full-screen fill is 3.45 ms).
+pub const IDLE_READS: u32 = 4_000_000;
+
 /// Wait until the board is idle, as spec 9.3 prescribes: a NOP, then `status` bit 9
 /// (SST-1 busy) read clear more than three times in a row. Returns `false` if the board
 /// is still busy after `max_reads` status reads.

@@ -5,7 +5,7 @@
 use firmware_tests::bits::fbz;
 use firmware_tests::{
     fastfill, init_640x480, triangle_fixed, wait_idle, Buffer, Emulator, Port, Triangle,
-    PCI_INIT_ENABLE,
+    IDLE_READS, PCI_INIT_ENABLE,
 };
 use sst1_board::BufferKind;
 use sst1_regs::addr;
@@ -127,16 +127,47 @@ fn reserved_offsets_are_harmless() {
 /// After commands the status register reports idle (bits 9:7 clear) with an empty PCI
 /// FIFO (bits 5:0 = 0x3f), and the idle wait of spec 9.3 succeeds.
 ///
-/// Source: spec 5.1 and 9.3. A real board should report idle within a few reads.
+/// Source: spec 5.1 and 9.3. The board reports busy while the triangle is drawn and
+/// idle once the engine is done (`status_reads_busy_while_drawing`).
 #[test]
 fn status_reports_idle_after_commands() {
     let mut p = Emulator::booted();
     triangle_fixed(&mut p, &Triangle::corner(0xffff_ffff));
-    assert!(wait_idle(&mut p, 100));
+    assert!(wait_idle(&mut p, IDLE_READS));
     let s = p.read(addr::STATUS);
     assert_eq!(s & 0x3f, 0x3f);
     assert_eq!(s & 0x380, 0);
     assert_eq!(s >> 28 & 7, 0, "no swaps pending");
+}
+
+/// The status register follows the timing model: busy (bits 9 and 7) right after a
+/// full-screen FASTFILL, with the writes issued behind it waiting in the PCI FIFO, and
+/// idle after as many reads as the fill takes; the same on every run.
+///
+/// Source: spec 5.1 (busy bits, FIFO free space), spec 2 (3.45 ms for the clear).
+#[test]
+fn status_reads_busy_while_drawing() {
+    let run = || {
+        let mut p = Emulator::booted();
+        assert!(wait_idle(&mut p, IDLE_READS));
+        fastfill(&mut p, 0x00ff_0000, 0);
+        let busy = p.read(addr::STATUS);
+        for _ in 0..10 {
+            p.write(addr::COLOR0, 0);
+        }
+        let queued = p.read(addr::STATUS) & 0x3f;
+        let mut reads = 0;
+        while p.read(addr::STATUS) & 0x200 != 0 {
+            reads += 1;
+        }
+        (busy & 0x3bf, queued, reads)
+    };
+    let (busy, queued, reads) = run();
+    assert_eq!(busy & 0x280, 0x280, "{busy:#x}");
+    assert_eq!(queued, 0x3f - 9, "ten writes wait behind the fill");
+    // 3.45 ms of fill at 4.5 clocks a read, less the writes and reads already made.
+    assert!((38_000..38_400).contains(&reads), "{reads}");
+    assert_eq!(run(), (busy, queued, reads));
 }
 
 /// SWAPBUFFER exchanges front and back: what was drawn into the back buffer becomes the
@@ -151,7 +182,7 @@ fn swap_buffers_exchanges_front_and_back() {
     fastfill(&mut p, 0x00ff_0000, 0);
     assert_eq!(p.read_pixel(Buffer::Front, 5, 5), 0);
     p.write(addr::SWAPBUFFER_CMD, 0);
-    assert!(wait_idle(&mut p, 100));
+    assert!(wait_idle(&mut p, IDLE_READS));
     assert_eq!(p.read(addr::STATUS) >> 10 & 3, 1);
     assert_eq!(p.read_pixel(Buffer::Front, 5, 5), 0xf800);
     assert_eq!(p.read_pixel(Buffer::Back, 5, 5), 0);

@@ -6,7 +6,9 @@
 //! strictly inside; see `raster.rs` for the fill rule).
 
 use firmware_tests::bits::{alpha, fbz, lfb};
-use firmware_tests::{fastfill, lfb16, triangle_fixed, wait_idle, Emulator, Port, Triangle};
+use firmware_tests::{
+    fastfill, lfb16, triangle_fixed, wait_idle, Emulator, Port, Triangle, IDLE_READS,
+};
 use sst1_regs::addr;
 
 const BASE: u32 = fbz::CLIP | fbz::RGB_WRITE | fbz::AUX_WRITE | fbz::DRAW_BACK;
@@ -14,7 +16,7 @@ const PIXELS: u32 = 28;
 
 /// The five counters in register order, read after the idle wait of spec 9.3.
 fn counters(p: &mut Emulator) -> [u32; 5] {
-    assert!(wait_idle(p, 100));
+    assert!(wait_idle(p, IDLE_READS));
     [
         addr::FBI_PIXELS_IN,
         addr::FBI_CHROMA_FAIL,

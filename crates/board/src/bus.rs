@@ -171,16 +171,23 @@ impl RegisterBus for Board {
     }
 
     fn read32(&mut self, bus_addr: u32) -> u32 {
+        self.timing.read();
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             // Reads ignore the chip field and always come from the FBI (spec 5).
             let (offset, _) = self.decode_register(bus_addr);
-            match map::desc_of(offset) {
+            let value = match map::desc_of(offset) {
                 Some(d) if d.access.contains(map::Access::READ) => self.fbi.read_reg(offset),
                 _ => {
                     self.diagnostics.note(Diagnostic::WriteOnlyRead);
                     self.fbi.read_reg(offset)
                 }
+            };
+            if offset & 0x3fc == addr::STATUS {
+                // FIFO, busy and swap bits from the timing model.
+                self.timing.status(value)
+            } else {
+                value
             }
         } else if bus_addr < TEX_BASE {
             self.fbi.lfb_read(bus_addr - LFB_BASE)

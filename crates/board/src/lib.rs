@@ -7,9 +7,9 @@
 //!   0x400000-0x7fffff  LFB        -------------->   FBI
 //!   0x800000-0xffffff  texture    --bits 22:21-->   TMU0..2
 //! ```
-//! Commands run to completion inside the write that starts them: the emulated board is
-//! always idle when the host looks. [`timing`] counts the graphics-clock cycles the real
-//! board would have taken (docs/timing.md).
+//! Commands run to completion inside the write that starts them. [`timing`] counts the
+//! graphics-clock cycles the real board would have taken (docs/timing.md) and answers
+//! the `status` register from them.
 
 mod box86;
 mod bus;

@@ -30,6 +30,8 @@
 //! `firmware-tests/tests/timing.rs` builds the spec's scenes and checks every row of its
 //! table; docs/timing.md shows the table.
 
+use std::collections::VecDeque;
+
 use serde::Serialize;
 
 /// Graphics clock of the boards the spec's table assumes.
@@ -59,6 +61,11 @@ pub const PIXEL_CLOCKS: u64 = 19;
 pub const RMW_PIXEL_CLOCKS: u64 = 3;
 /// Per FASTFILL row, on top of two pixels per clock.
 pub const FILL_ROW_CLOCKS: u64 = 630;
+/// Host time of one register or LFB read: a PCI read's round trip, taken as 3 PCI
+/// clocks (4.5 graphics clocks; UNVERIFIED: the spec gives no read latency).
+pub const PCI_CLOCKS_PER_READ: u64 = 72;
+/// Entries of the PCI FIFO (spec 3: "an asynchronous FIFO 64 entries deep").
+pub const PCI_FIFO_ENTRIES: usize = 64;
 
 /// Where one frame's (or the whole replay's) modelled time went, in graphics clocks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -103,6 +110,65 @@ pub struct Timing {
     /// Sub-clock remainder carried between commands (1/16 clock).
     #[serde(skip)]
     fraction: u64,
+    /// What the host sees: the status register from the same costs, played out in time.
+    #[serde(skip)]
+    host: HostView,
+}
+
+/// The board as the host's bus accesses see it in time (1/16 clock since power-on): when
+/// each write in the PCI FIFO is taken by the engine, and when the engine is done. It
+/// answers the status register (spec 5.1), so the same trace reads the same values on
+/// every run. A write waits while the FIFO is full.
+#[derive(Clone, Debug, Default)]
+struct HostView {
+    /// The host's time: every access moves it on.
+    now: u64,
+    /// When the engine has finished every command taken so far.
+    engine_free: u64,
+    /// When the TMUs have finished (the last textured triangle).
+    tmu_free: u64,
+    /// When each write still in the FIFO is taken, oldest first (at most 64).
+    fifo: VecDeque<u64>,
+    /// When each swap still pending is taken (at most 64, as the FIFO).
+    swaps: VecDeque<u64>,
+    /// When the last write was taken.
+    last_taken: u64,
+}
+
+impl HostView {
+    /// Drops what the engine has taken by now.
+    fn settle(&mut self) {
+        while self.fifo.front().is_some_and(|&t| t <= self.now) {
+            self.fifo.pop_front();
+        }
+        while self.swaps.front().is_some_and(|&t| t <= self.now) {
+            self.swaps.pop_front();
+        }
+    }
+
+    /// A write: it crosses the bus (waiting for room in the FIFO) and is taken when the
+    /// engine has finished what came before.
+    fn write(&mut self) {
+        self.now += PCI_CLOCKS_PER_WRITE;
+        self.settle();
+        if self.fifo.len() >= PCI_FIFO_ENTRIES {
+            if let Some(t) = self.fifo.pop_front() {
+                self.now = self.now.max(t);
+            }
+            self.settle();
+        }
+        let taken = self.now.max(self.engine_free);
+        self.fifo.push_back(taken);
+        self.last_taken = taken;
+    }
+
+    /// The command in the last write keeps the engine busy `engine` (1/16 clock).
+    fn command(&mut self, engine: u64, textured: bool) {
+        self.engine_free = self.last_taken + engine;
+        if textured {
+            self.tmu_free = self.engine_free;
+        }
+    }
 }
 
 impl Default for Timing {
@@ -114,6 +180,7 @@ impl Default for Timing {
             current: FrameTime::default(),
             pending_bus: 0,
             fraction: 0,
+            host: HostView::default(),
         }
     }
 }
@@ -138,6 +205,34 @@ impl Timing {
     #[inline]
     pub(crate) fn write(&mut self) {
         self.pending_bus += PCI_CLOCKS_PER_WRITE;
+        self.host.write();
+    }
+
+    /// A read crossed the bus.
+    #[inline]
+    pub(crate) fn read(&mut self) {
+        self.host.now += PCI_CLOCKS_PER_READ;
+    }
+
+    /// The `status` register (spec 5.1) at the host's present time: `fbi_bits` is the
+    /// FBI's own value, whose retrace and displayed-buffer bits are kept; PCI FIFO free
+    /// space (bits 5:0), FBI, TREX and SST-1 busy (bits 7, 8, 9) and swaps pending
+    /// (bits 30:28) come from the model. The memory FIFO is not modelled (bits 27:12
+    /// read it empty).
+    pub(crate) fn status(&mut self, fbi_bits: u32) -> u32 {
+        let h = &mut self.host;
+        h.settle();
+        let free = (PCI_FIFO_ENTRIES - h.fifo.len()).min(0x3f) as u32;
+        let fbi_busy = h.engine_free > h.now;
+        let tmu_busy = h.tmu_free > h.now;
+        let swaps = h.swaps.len().min(7) as u32;
+        let sst_busy = fbi_busy || tmu_busy || !h.fifo.is_empty();
+        (fbi_bits & !(0x3f | 0x380 | 0x7 << 28))
+            | free
+            | u32::from(fbi_busy) << 7
+            | u32::from(tmu_busy) << 8
+            | u32::from(sst_busy) << 9
+            | swaps << 28
     }
 
     /// A triangle command ran.
@@ -158,6 +253,7 @@ impl Timing {
             };
         let raster = RASTER_CLOCKS + w.spans * SPAN_CLOCKS + w.pixels * per_pixel;
         let engine = setup.max(raster);
+        self.host.command(engine, w.textured);
         let (cycles, bus_bound) = self.command(engine);
         self.current.triangles += cycles;
         self.current.bus_bound += bus_bound;
@@ -166,6 +262,7 @@ impl Timing {
     /// A FASTFILL of `rows` rows of `pixels` pixels in all ran.
     pub(crate) fn fastfill(&mut self, pixels: u64, rows: u64) {
         let engine = pixels * SUB / 2 + rows * FILL_ROW_CLOCKS;
+        self.host.command(engine, false);
         let (cycles, bus_bound) = self.command(engine);
         self.current.fills += cycles;
         self.current.bus_bound += bus_bound;
@@ -173,6 +270,8 @@ impl Timing {
 
     /// A SWAPBUFFER ended the frame.
     pub(crate) fn swap(&mut self) {
+        let taken = self.host.last_taken;
+        self.host.swaps.push_back(taken);
         let (cycles, _) = self.command(0);
         self.current.cycles += cycles;
         let frame = std::mem::take(&mut self.current);
@@ -250,5 +349,44 @@ mod tests {
         // A 640x480 clear: 153,600 clocks of pixels and 480 rows of 39.375.
         t.fastfill(640 * 480, 480);
         assert_eq!(t.current_frame().fills, 153_600 + 18_900);
+    }
+
+    #[test]
+    fn status_reads_busy_until_the_engine_is_done_and_the_fifo_fills() {
+        let mut t = Timing::default();
+        // Idle: FIFO empty (0x3f), nothing busy.
+        assert_eq!(t.status(0x40), 0x40 | 0x3f);
+        // A fill of 640x480 (172,500 clocks) started by one write.
+        t.write();
+        t.fastfill(640 * 480, 480);
+        let s = t.status(0);
+        assert_eq!(s & 0x380, 0x280, "FBI and SST-1 busy, TREX idle: {s:#x}");
+        // 100 writes while it runs: the FIFO holds 64, the host waits for the rest, so
+        // the fill is over when the last is written, and the 64 writes after it are
+        // taken as they arrive.
+        for _ in 0..20 {
+            t.write();
+        }
+        assert_eq!(t.status(0) & 0x3f, 64 - 20);
+        for _ in 0..80 {
+            t.write();
+        }
+        let s = t.status(0);
+        assert_eq!(s & 0x3f, 0x3f, "{s:#x}");
+        assert_eq!(s & 0x380, 0);
+        // A swap is pending until the engine takes it.
+        t.write();
+        t.fastfill(640 * 480, 480);
+        t.write();
+        t.swap();
+        assert_eq!((t.status(0) >> 28) & 7, 1);
+        let mut reads = 0;
+        while t.status(0) & 0x200 != 0 {
+            t.read();
+            reads += 1;
+        }
+        // 172,500 clocks at 4.5 clocks a read.
+        assert_eq!(reads, 172_500 * 16 / PCI_CLOCKS_PER_READ as usize);
+        assert_eq!((t.status(0) >> 28) & 7, 0);
     }
 }

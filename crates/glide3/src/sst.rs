@@ -32,8 +32,9 @@ impl crate::Glide {
 
     /// `grSstIsBusy` (gsst.c): unless one is outstanding, write `nopCMD` = 1 (which
     /// also clears the pixel counters, spec 5.22); then read the busy bit, and once
-    /// the chip is seen idle the next call writes `nopCMD` again. UNVERIFIED: no
-    /// timing model yet; our board finishes every command at once, so it is never busy.
+    /// the chip is seen idle the next call writes `nopCMD` again. The board's timing
+    /// model answers busy while the queued commands would still be drawing
+    /// (`sst1_board::timing`).
     pub fn is_busy(&mut self) -> bool {
         if !self.nop_cmd_sent {
             self.hw.w(NOP_CMD, 1);

@@ -192,8 +192,9 @@ impl Fbi {
         match offset & 0x3fc {
             addr::STATUS => {
                 self.vretrace = !self.vretrace;
-                // Idle, both FIFOs empty, no swaps pending (the emulator finishes every
-                // command before the next bus access).
+                // Idle, both FIFOs empty, no swaps pending: the FBI finishes every
+                // command before the next bus access; the board replaces the FIFO, busy
+                // and swap bits with its timing model's (`sst1_board::timing`).
                 0x3f | u32::from(self.vretrace) << 6
                     | (self.fb.front as u32 & 3) << 10
                     | 0xffff << 12
