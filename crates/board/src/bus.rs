@@ -75,7 +75,7 @@ impl Board {
             Command::Fastfill => self.fastfill::<M>(),
             Command::Swap => {
                 self.fbi.swap();
-                self.timing.swap();
+                self.timing.swap(value, self.fbi.reg(addr::V_SYNC));
             }
         }
     }
@@ -185,7 +185,7 @@ impl RegisterBus for Board {
             };
             if offset & 0x3fc == addr::STATUS {
                 // FIFO, busy and swap bits from the timing model.
-                self.timing.status(value)
+                self.timing.status(value, self.fbi.reg(addr::V_SYNC))
             } else {
                 value
             }

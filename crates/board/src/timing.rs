@@ -66,6 +66,12 @@ pub const FILL_ROW_CLOCKS: u64 = 630;
 pub const PCI_CLOCKS_PER_READ: u64 = 72;
 /// Entries of the PCI FIFO (spec 3: "an asynchronous FIFO 64 entries deep").
 pub const PCI_FIFO_ENTRIES: usize = 64;
+/// Monitor refresh rate. UNVERIFIED: the pixel clock comes from the DAC's PLL, which is
+/// not modelled; the spec's tables assume 640x480 at 60 Hz.
+pub const REFRESH_HZ: u64 = 60;
+/// Lines of vertical sync and of the whole frame when `vSync` is not set: VESA
+/// 640x480 at 60 Hz (2 of 525).
+const DEFAULT_VSYNC_LINES: (u64, u64) = (2, 525);
 
 /// Where one frame's (or the whole replay's) modelled time went, in graphics clocks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -78,6 +84,8 @@ pub struct FrameTime {
     pub fills: u64,
     /// Cycles where the bus, not the engine, was the limit (included in the above).
     pub bus_bound: u64,
+    /// Cycles of the SWAPBUFFER command: waiting for vertical retrace.
+    pub retrace_wait: u64,
 }
 
 impl FrameTime {
@@ -86,6 +94,7 @@ impl FrameTime {
         self.triangles += o.triangles;
         self.fills += o.fills;
         self.bus_bound += o.bus_bound;
+        self.retrace_wait += o.retrace_wait;
     }
 }
 
@@ -110,6 +119,9 @@ pub struct Timing {
     /// Sub-clock remainder carried between commands (1/16 clock).
     #[serde(skip)]
     fraction: u64,
+    /// The board's clock (1/16 clock) at the last synchronised swap.
+    #[serde(skip)]
+    last_swap: u64,
     /// What the host sees: the status register from the same costs, played out in time.
     #[serde(skip)]
     host: HostView,
@@ -133,6 +145,52 @@ struct HostView {
     swaps: VecDeque<u64>,
     /// When the last write was taken.
     last_taken: u64,
+    /// When the last synchronised swap happened.
+    last_swap: u64,
+}
+
+/// Vertical retrace in time (1/16 clock): one frame every [`REFRESH_HZ`]-th of a
+/// second, the retrace at the end of each frame for the `vSync` register's share of
+/// its lines (spec 5.39: `vSync_on` lines of `vSync_on + vSync_off`), so that the board
+/// starts outside it (spec 5.1: bit 6 defaults to 1).
+#[derive(Clone, Copy, Debug)]
+struct Retrace {
+    period: u64,
+    active: u64,
+}
+
+impl Retrace {
+    fn new(clock_hz: u64, vsync: u32) -> Self {
+        let (on, off) = (u64::from(vsync & 0xfff), u64::from((vsync >> 16) & 0xfff));
+        let (on, total) = if on + off == 0 {
+            DEFAULT_VSYNC_LINES
+        } else {
+            (on, on + off)
+        };
+        let period = (clock_hz * SUB / REFRESH_HZ).max(1);
+        Self {
+            period,
+            active: period * on / total,
+        }
+    }
+
+    /// Whether the retrace is active at `t`.
+    fn active_at(self, t: u64) -> bool {
+        (t + self.active) % self.period < self.active
+    }
+
+    /// When a swap taken at `taken`, synchronised to retrace with `interval`
+    /// (`swapbufferCMD` bits 8:1), happens: at a retrace (at once if one is active),
+    /// and not before more than `interval` retraces have begun since the last swap
+    /// (spec 5.24).
+    fn swap_time(self, taken: u64, last_swap: u64, interval: u64) -> u64 {
+        // In time shifted by the retrace's length, retraces begin at whole periods.
+        let (p, a) = (self.period, self.active);
+        let u = taken + a;
+        let next = if u % p < a { u } else { (u / p + 1) * p };
+        let counted = ((last_swap + a) / p + interval + 1) * p;
+        next.max(counted) - a
+    }
 }
 
 impl HostView {
@@ -180,6 +238,7 @@ impl Default for Timing {
             current: FrameTime::default(),
             pending_bus: 0,
             fraction: 0,
+            last_swap: 0,
             host: HostView::default(),
         }
     }
@@ -219,16 +278,20 @@ impl Timing {
     /// space (bits 5:0), FBI, TREX and SST-1 busy (bits 7, 8, 9) and swaps pending
     /// (bits 30:28) come from the model. The memory FIFO is not modelled (bits 27:12
     /// read it empty).
-    pub(crate) fn status(&mut self, fbi_bits: u32) -> u32 {
+    pub(crate) fn status(&mut self, fbi_bits: u32, vsync: u32) -> u32 {
+        let retrace = Retrace::new(self.clock_hz, vsync);
         let h = &mut self.host;
         h.settle();
+        // Bit 6: 0 while the vertical retrace is active.
+        let vretrace = u32::from(!retrace.active_at(h.now)) << 6;
         let free = (PCI_FIFO_ENTRIES - h.fifo.len()).min(0x3f) as u32;
         let fbi_busy = h.engine_free > h.now;
         let tmu_busy = h.tmu_free > h.now;
         let swaps = h.swaps.len().min(7) as u32;
         let sst_busy = fbi_busy || tmu_busy || !h.fifo.is_empty();
-        (fbi_bits & !(0x3f | 0x380 | 0x7 << 28))
+        (fbi_bits & !(0x3f | 0x40 | 0x380 | 0x7 << 28))
             | free
+            | vretrace
             | u32::from(fbi_busy) << 7
             | u32::from(tmu_busy) << 8
             | u32::from(sst_busy) << 9
@@ -269,11 +332,35 @@ impl Timing {
     }
 
     /// A SWAPBUFFER ended the frame.
-    pub(crate) fn swap(&mut self) {
+    /// `value` is what was written to `swapbufferCMD`; `vsync` the `vSync` register.
+    pub(crate) fn swap(&mut self, value: u32, vsync: u32) {
+        let retrace = Retrace::new(self.clock_hz, vsync);
+        let synced = value & 1 != 0;
+        let interval = u64::from((value >> 1) & 0xff);
+        // The host's view: the swap is pending, and the engine waits, until it happens.
         let taken = self.host.last_taken;
-        self.host.swaps.push_back(taken);
-        let (cycles, _) = self.command(0);
-        self.current.cycles += cycles;
+        let done = if synced {
+            retrace.swap_time(taken, self.host.last_swap, interval)
+        } else {
+            taken
+        };
+        if synced {
+            self.host.last_swap = done;
+        }
+        self.host.swaps.push_back(done);
+        self.host.engine_free = self.host.engine_free.max(done);
+        // The count: the same wait on the board's own clock (the cycles so far).
+        let now = self.cycles() * SUB + self.fraction + self.pending_bus;
+        let wait = if synced {
+            retrace.swap_time(now, self.last_swap, interval) - now
+        } else {
+            0
+        };
+        if synced {
+            self.last_swap = now + wait;
+        }
+        self.command(wait);
+        self.current.retrace_wait += wait / SUB;
         let frame = std::mem::take(&mut self.current);
         self.total.add(&frame);
         if self.frames.len() < MAX_FRAMES {
@@ -342,7 +429,7 @@ mod tests {
         });
         assert_eq!(t.cycles(), 24 + 60); // (960 + 14) / 16 = 60, 14/16 carried
         assert_eq!(t.current_frame().bus_bound, 2);
-        t.swap();
+        t.swap(0, 0);
         assert_eq!(t.frames.len(), 1);
         assert_eq!(t.frames[0].cycles, 84);
         assert_eq!(t.total.triangles, 84);
@@ -355,11 +442,11 @@ mod tests {
     fn status_reads_busy_until_the_engine_is_done_and_the_fifo_fills() {
         let mut t = Timing::default();
         // Idle: FIFO empty (0x3f), nothing busy.
-        assert_eq!(t.status(0x40), 0x40 | 0x3f);
+        assert_eq!(t.status(0x40, 0), 0x40 | 0x3f);
         // A fill of 640x480 (172,500 clocks) started by one write.
         t.write();
         t.fastfill(640 * 480, 480);
-        let s = t.status(0);
+        let s = t.status(0, 0);
         assert_eq!(s & 0x380, 0x280, "FBI and SST-1 busy, TREX idle: {s:#x}");
         // 100 writes while it runs: the FIFO holds 64, the host waits for the rest, so
         // the fill is over when the last is written, and the 64 writes after it are
@@ -367,26 +454,64 @@ mod tests {
         for _ in 0..20 {
             t.write();
         }
-        assert_eq!(t.status(0) & 0x3f, 64 - 20);
+        assert_eq!(t.status(0, 0) & 0x3f, 64 - 20);
         for _ in 0..80 {
             t.write();
         }
-        let s = t.status(0);
+        let s = t.status(0, 0);
         assert_eq!(s & 0x3f, 0x3f, "{s:#x}");
         assert_eq!(s & 0x380, 0);
         // A swap is pending until the engine takes it.
         t.write();
         t.fastfill(640 * 480, 480);
         t.write();
-        t.swap();
-        assert_eq!((t.status(0) >> 28) & 7, 1);
+        t.swap(0, 0);
+        assert_eq!((t.status(0, 0) >> 28) & 7, 1);
         let mut reads = 0;
-        while t.status(0) & 0x200 != 0 {
+        while t.status(0, 0) & 0x200 != 0 {
             t.read();
             reads += 1;
         }
         // 172,500 clocks at 4.5 clocks a read.
         assert_eq!(reads, 172_500 * 16 / PCI_CLOCKS_PER_READ as usize);
-        assert_eq!((t.status(0) >> 28) & 7, 0);
+        assert_eq!((t.status(0, 0) >> 28) & 7, 0);
+    }
+
+    #[test]
+    fn synchronised_swaps_wait_for_the_retraces_their_interval_asks_for() {
+        let r = Retrace::new(DEFAULT_CLOCK_HZ, 0);
+        let period = DEFAULT_CLOCK_HZ * SUB / REFRESH_HZ;
+        assert_eq!(r.period, period);
+        assert_eq!(r.active, period * 2 / 525);
+        assert!(!r.active_at(0) && r.active_at(period - 1) && !r.active_at(period));
+        let first = period - r.active;
+        // Interval 0: the next retrace; during one, at once.
+        assert_eq!(r.swap_time(0, 0, 0), first);
+        assert_eq!(r.swap_time(first + 5, 0, 0), first + 5);
+        // Interval 1 after a swap at the first retrace: two retraces on.
+        assert_eq!(r.swap_time(first, first, 1), first + 2 * period);
+        // The count: a frame that swaps at once on an idle board waits for the retrace.
+        let mut t = Timing::default();
+        t.write();
+        t.swap(1, 0);
+        // (The swap write itself is part of the wait from the board's clock.)
+        assert_eq!(
+            t.frames[0].retrace_wait,
+            (first - PCI_CLOCKS_PER_WRITE) / SUB
+        );
+        // Unsynchronised swaps do not wait.
+        t.write();
+        t.swap(0, 0);
+        assert_eq!(t.frames[1].retrace_wait, 0);
+        // The host sees the swap pending until the retrace.
+        let mut t = Timing::default();
+        t.write();
+        t.swap(1 | 2 << 1, 0);
+        assert_eq!((t.status(0, 0) >> 28) & 7, 1);
+        while (t.status(0, 0) >> 28) & 7 != 0 {
+            t.read();
+        }
+        assert!(t.host.now >= first + 2 * period);
+        assert_eq!(t.status(0, 0) & 0x40, 0, "swapped during the retrace");
     }
 }

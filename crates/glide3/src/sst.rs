@@ -18,14 +18,15 @@ const CHIP_REGISTERS: u32 = 0x100;
 
 impl crate::Glide {
     /// `grSstVideoLine`: the whole `vRetrace` register, unmasked (gsst.c).
-    /// UNVERIFIED: no timing model yet; our board reads `vRetrace` as 0.
+    /// UNVERIFIED: the timing model has no scan-line counter; our board reads
+    /// `vRetrace` as 0.
     pub fn video_line(&mut self) -> u32 {
         self.hw.r(V_RETRACE)
     }
 
     /// `grSstVRetraceOn`: true when the status register's retrace bit is clear
-    /// (gsst.c tests `SST_VRETRACE` and answers the opposite). UNVERIFIED: no timing
-    /// model yet; our board's retrace bit flips at every status read.
+    /// (gsst.c tests `SST_VRETRACE` and answers the opposite); the board's timing model
+    /// sets the bit from its frame clock (`sst1_board::timing`).
     pub fn vretrace_on(&mut self) -> bool {
         self.hw.r(STATUS) & STATUS_VRETRACE == 0
     }

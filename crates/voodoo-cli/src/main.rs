@@ -343,6 +343,7 @@ impl Stats {
                 "triangles": f.triangles,
                 "fills": f.fills,
                 "bus_bound": f.bus_bound,
+                "retrace_wait": f.retrace_wait,
             })
         };
         serde_json::json!({
@@ -449,10 +450,11 @@ fn replay(
             );
             for (i, f) in t.frames.iter().enumerate() {
                 println!(
-                    "frame {i:<6} {:.3} ms: triangles {:.3}, fills {:.3}, bus-bound {:.3}",
+                    "frame {i:<6} {:.3} ms: triangles {:.3}, fills {:.3}, retrace wait {:.3}, bus-bound {:.3}",
                     ms(f.cycles),
                     ms(f.triangles),
                     ms(f.fills),
+                    ms(f.retrace_wait),
                     ms(f.bus_bound)
                 );
             }
