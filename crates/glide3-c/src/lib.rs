@@ -387,11 +387,8 @@ fn save_png(board: &Board, path: &str) {
     let (w, h) = board.display_size();
     let px = board.dump_buffer(BufferKind::Front);
     let mut rgb = Vec::with_capacity((w * h * 3) as usize);
-    for p in px.iter().take((w * h) as usize) {
-        let (r, g, b) = ((p >> 11) & 0x1f, (p >> 5) & 0x3f, p & 0x1f);
-        rgb.push(((r << 3) | (r >> 2)) as u8);
-        rgb.push(((g << 2) | (g >> 4)) as u8);
-        rgb.push(((b << 3) | (b >> 2)) as u8);
+    for &p in px.iter().take((w * h) as usize) {
+        rgb.extend(sst1_trace::rgb565_to_rgb8(p));
     }
     if let Err(e) = image::save_buffer(path, &rgb, w, h, image::ExtendedColorType::Rgb8) {
         eprintln!("glide3: cannot write {path}: {e}");
@@ -1306,9 +1303,7 @@ fn fill_from_buffer(words: &mut [u32], board: &SharedBoard, buffer: u32, stride:
                 let word = &mut words[y * 512 + x / 2];
                 *word |= u32::from(p) << (16 * (x & 1));
             } else {
-                let p = u32::from(p);
-                let (r, g, b) = ((p >> 11) & 0x1f, (p >> 5) & 0x3f, p & 0x1f);
-                let (r, g, b) = (r << 3 | r >> 2, g << 2 | g >> 4, b << 3 | b >> 2);
+                let [r, g, b] = sst1_trace::rgb565_to_rgb8(p).map(u32::from);
                 words[y * 1024 + x] = 0xff00_0000 | r << 16 | g << 8 | b;
             }
         }

@@ -11,6 +11,9 @@
 //! intended change, `VOODOO_BLESS=1 cargo test -p glide3-c --test c_examples` rewrites
 //! the committed trace and goldens of the C examples.
 
+#[path = "../../trace/tests/support/address_space.rs"]
+mod address_space;
+
 use sst1_board::{Board, Reference};
 use sst1_trace::{execute, load_trace, rgb565_to_rgb8, Dump, Trace};
 use std::io::{Read, Write};
@@ -263,25 +266,12 @@ fn hostile_arguments_reach_the_error_callback() {
 /// report nothing.
 #[test]
 fn a_hostile_program_is_harmless() {
-    use std::os::unix::process::CommandExt;
     let out = std::env::temp_dir().join(format!("glide3-c-test-{}-abuse", std::process::id()));
     std::fs::create_dir_all(&out).expect("temp dir");
     let exe = build("tests/abuse", &out);
     let mut plain = Command::new(&exe);
     plain.arg("plain").env("LD_LIBRARY_PATH", lib_dir());
-    // SAFETY: setrlimit is async-signal-safe; nothing else runs between fork and exec.
-    unsafe {
-        plain.pre_exec(|| {
-            let limit = libc::rlimit {
-                rlim_cur: 4 << 30,
-                rlim_max: 4 << 30,
-            };
-            if libc::setrlimit(libc::RLIMIT_AS, &limit) != 0 {
-                return Err(std::io::Error::last_os_error());
-            }
-            Ok(())
-        })
-    };
+    address_space::limit_address_space(&mut plain, 4 << 30);
     let run = plain.output().expect("run abuse");
     assert_prints_ok(&run);
 

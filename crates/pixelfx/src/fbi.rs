@@ -49,9 +49,7 @@ pub struct Fbi {
     profile: PixelProfile,
     /// Dither tables for the profile's 2x2 matrix.
     pub(crate) dither: Dither,
-    /// Toggled on each status read so that drivers waiting for retrace make progress.
-    vretrace: bool,
-    /// Force the reference (unspecialised) triangle walker; see [`Fbi::set_generic_path`].
+    /// Force the generic (unspecialised) triangle walker; see [`Fbi::set_generic_path`].
     pub(crate) generic_path: bool,
 }
 
@@ -67,7 +65,6 @@ impl Fbi {
             stats: Stats::default(),
             dither: Dither::new(profile.dither_2x2),
             profile,
-            vretrace: false,
             generic_path: false,
         }
     }
@@ -191,13 +188,10 @@ impl Fbi {
         const COUNTER_MASK: u64 = 0x00ff_ffff;
         match offset & 0x3fc {
             addr::STATUS => {
-                self.vretrace = !self.vretrace;
-                // Idle, both FIFOs empty, no swaps pending: the FBI finishes every
-                // command before the next bus access; the board replaces the FIFO, busy
-                // and swap bits with its timing model's (`sst1_board::timing`).
-                0x3f | u32::from(self.vretrace) << 6
-                    | (self.fb.front as u32 & 3) << 10
-                    | 0xffff << 12
+                // The displayed buffer and the memory FIFO (not modelled: empty). The
+                // board fills in the PCI FIFO, retrace, busy and swap bits from its
+                // timing model (`sst1_board::timing`); alone, the FBI reads idle.
+                0x3f | 1 << 6 | (self.fb.front as u32 & 3) << 10 | 0xffff << 12
             }
             addr::FBI_PIXELS_IN => (self.stats.pixels_in & COUNTER_MASK) as u32,
             addr::FBI_CHROMA_FAIL => (self.stats.chroma_fail & COUNTER_MASK) as u32,

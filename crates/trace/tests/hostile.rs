@@ -7,6 +7,10 @@
 //! `setrlimit(RLIMIT_AS)`: an allocation past the limit fails there, so a body that
 //! allocates with the input's size aborts the child, and the test fails with its output.
 
+#[cfg(unix)]
+#[path = "support/address_space.rs"]
+mod address_space;
+
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -38,22 +42,7 @@ fn in_memory_limit(name: &str, limit: u64, body: impl FnOnce()) {
         .args([name, "--exact", "--nocapture", "--test-threads=1"])
         .env(CHILD, name);
     #[cfg(unix)]
-    {
-        use std::os::unix::process::CommandExt;
-        // SAFETY: setrlimit is async-signal-safe and touches no memory of the parent.
-        unsafe {
-            command.pre_exec(move || {
-                let rlim = libc::rlimit {
-                    rlim_cur: limit as libc::rlim_t,
-                    rlim_max: limit as libc::rlim_t,
-                };
-                if libc::setrlimit(libc::RLIMIT_AS, &rlim) != 0 {
-                    return Err(std::io::Error::last_os_error());
-                }
-                Ok(())
-            });
-        }
-    }
+    address_space::limit_address_space(&mut command, limit);
     let output = command.output().expect("run the test in a child");
     let text = String::from_utf8_lossy(&output.stdout).into_owned()
         + &String::from_utf8_lossy(&output.stderr);

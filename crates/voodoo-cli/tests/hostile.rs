@@ -6,6 +6,9 @@
 //! test) and may have an address-space limit (`setrlimit(RLIMIT_AS)` in the child); its
 //! peak resident memory comes from `wait4`.
 
+#[path = "../../trace/tests/support/address_space.rs"]
+mod address_space;
+
 use std::io::Write;
 use std::os::unix::fs::{FileTypeExt, MetadataExt};
 use std::path::{Path, PathBuf};
@@ -40,20 +43,7 @@ fn voodoo_limited(dir: &Path, args: &[&str], limit: Option<u64>) -> Run {
         .stdout(std::fs::File::create(&out_path).unwrap())
         .stderr(std::fs::File::create(&err_path).unwrap());
     if let Some(limit) = limit {
-        use std::os::unix::process::CommandExt;
-        // SAFETY: setrlimit is async-signal-safe and touches no memory of the parent.
-        unsafe {
-            command.pre_exec(move || {
-                let rlim = libc::rlimit {
-                    rlim_cur: limit as libc::rlim_t,
-                    rlim_max: limit as libc::rlim_t,
-                };
-                if libc::setrlimit(libc::RLIMIT_AS, &rlim) != 0 {
-                    return Err(std::io::Error::last_os_error());
-                }
-                Ok(())
-            });
-        }
+        address_space::limit_address_space(&mut command, limit);
     }
     let child = command.spawn().unwrap();
     let pid = child.id() as libc::pid_t;
