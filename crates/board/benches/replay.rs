@@ -1,5 +1,5 @@
 //! Replay throughput: runs the two heavy conformance traces (or any trace whose name
-//! contains a command-line filter) on the hardware model's fast pixel path, on its
+//! contains a command-line filter) on the hardware model's span kernels, on its
 //! generic path, and on the custom model (the switches read at run time, here set to the
 //! hardware model's: what the compile-time model saves) and prints Mpixels/s
 //! (`fbiPixelsIn` per second), triangles/s and the speedups.
@@ -8,12 +8,7 @@
 //! cargo bench -p sst1-board --bench replay                  # perf_gouraud_heavy, perf_tex_heavy
 //! cargo bench -p sst1-board --bench replay -- gouraud       # traces whose name contains "gouraud"
 //! BENCH_ITERS=5 cargo bench -p sst1-board --bench replay    # best of 5 runs per path
-//! cargo bench -p sst1-board --bench replay -- --dump-raster-stats [FILTER...]
 //! ```
-//!
-//! `--dump-raster-stats` replays every trace (or those matching the filters) once and
-//! prints the mode-register keys their triangles used, most pixels first, in the syntax
-//! of `pixelfx::specialize`'s table, marking those that already have an entry.
 //!
 //! Each run builds a fresh board and replays the whole trace (`sst1_trace::execute`);
 //! trace loading is not timed. The run kept is the best of `BENCH_ITERS` runs (default
@@ -24,12 +19,8 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use std::collections::BTreeMap;
-
-use pixelfx::specialize::RasterKey;
 use sst1_board::{AccuracyProfile, Board, Model, Stats};
-use sst1_regs::{addr, RegisterBus};
-use sst1_trace::{execute, load_trace, Trace, TraceOp};
+use sst1_trace::{execute, load_trace, Trace};
 
 /// The traces run when no filter is given.
 const DEFAULT_TRACES: [&str; 2] = ["perf_gouraud_heavy", "perf_tex_heavy"];
@@ -54,7 +45,7 @@ fn thread_cpu_time() -> Option<Duration> {
 /// How a run drives the board.
 #[derive(Clone, Copy)]
 enum RunPath {
-    /// The hardware model, specialised walkers and texel caches.
+    /// The hardware model, span kernels and texel caches.
     Fast,
     /// The hardware model's generic path.
     Generic,
@@ -118,7 +109,6 @@ fn report(label: &str, t: Timing, s: &Stats) {
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces");
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let dump_stats = args.iter().any(|a| a == "--dump-raster-stats");
     let filters: Vec<String> = args.into_iter().filter(|a| !a.starts_with("--")).collect();
     let iters = std::env::var("BENCH_ITERS")
         .ok()
@@ -133,17 +123,13 @@ fn main() {
         .filter(|p| {
             let name = trace_name(p);
             if filters.is_empty() {
-                dump_stats || DEFAULT_TRACES.contains(&name.as_str())
+                DEFAULT_TRACES.contains(&name.as_str())
             } else {
                 filters.iter().any(|f| name.contains(f.as_str()))
             }
         })
         .collect();
     paths.sort();
-    if dump_stats {
-        raster_stats(&paths);
-        return;
-    }
     println!("best of {iters} run(s) per path");
     for path in paths {
         let trace = match load_trace(&path) {
@@ -179,74 +165,4 @@ fn trace_name(p: &Path) -> String {
         .file_name()
         .map_or(String::new(), |f| f.to_string_lossy().into_owned());
     file.split('.').next().unwrap_or_default().to_owned()
-}
-
-/// Triangles and pixels drawn per raster key, with the first trace that used the key.
-#[derive(Default)]
-struct KeyUse {
-    triangles: u64,
-    pixels: u64,
-    first_trace: String,
-}
-
-/// Replay each trace, counting triangles and pixels per [`RasterKey`]; print the keys,
-/// most pixels first, as entries of the specialisation table.
-fn raster_stats(paths: &[PathBuf]) {
-    let mut uses: BTreeMap<RasterKey, KeyUse> = BTreeMap::new();
-    for path in paths {
-        let Ok(trace) = load_trace(path) else {
-            eprintln!("{}: cannot load", path.display());
-            continue;
-        };
-        let name = trace_name(path);
-        let mut board = Board::new(trace.board_config());
-        for op in &trace.ops {
-            match *op {
-                TraceOp::Write { addr, value } if is_triangle_command(addr) => {
-                    let key = RasterKey::of(board.fbi());
-                    let before = board.stats().pixels_in;
-                    board.write32(addr, value);
-                    let u = uses.entry(key).or_default();
-                    if u.first_trace.is_empty() {
-                        u.first_trace.clone_from(&name);
-                    }
-                    u.triangles += 1;
-                    u.pixels += board.stats().pixels_in - before;
-                }
-                TraceOp::Write { addr, value } => board.write32(addr, value),
-                TraceOp::Pci { offset, value } => board.pci_write(offset, value),
-                TraceOp::Read { addr, .. } => {
-                    board.read32(addr);
-                }
-                TraceOp::Config { .. } | TraceOp::Dump { .. } => {}
-            }
-        }
-    }
-    let mut sorted: Vec<_> = uses.into_iter().collect();
-    sorted.sort_by_key(|(_, u)| std::cmp::Reverse(u.pixels));
-    for (key, u) in sorted {
-        println!(
-            "    /// {}: {} triangles, {} pixels.{}\n    {}",
-            u.first_trace,
-            u.triangles,
-            u.pixels,
-            if key.is_specialised() {
-                " (in table)"
-            } else {
-                ""
-            },
-            key.table_entry()
-        );
-    }
-}
-
-/// Whether a write at bus address `addr` is a `triangleCMD`/`ftriangleCMD` for the FBI
-/// (register space, chip field broadcast or FBI; the command offsets are the same in the
-/// remapped register map).
-fn is_triangle_command(addr: u32) -> bool {
-    let chips = (addr >> 10) & 0xf;
-    let offset = addr & 0x3fc;
-    addr < 0x40_0000
-        && (chips == 0 || chips & 1 != 0)
-        && (offset == addr::TRIANGLE_CMD || offset == addr::F_TRIANGLE_CMD)
 }

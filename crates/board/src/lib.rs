@@ -162,9 +162,9 @@ impl Board {
         self.set_model(Model::from_profile(profile));
     }
 
-    /// Force the generic path: every mode register is read at run time for every
-    /// pixel instead of using a walker specialised for the triangle's modes (see
-    /// `pixelfx::specialize`), and every texel is decoded from texture memory instead of
+    /// Force the generic path (the reference path): the pipeline runs pixel by pixel with
+    /// every mode register read at run time for every pixel instead of the span kernels
+    /// (`pixelfx::span`), and every texel is decoded from texture memory instead of
     /// read from the TMUs' decoded-texel caches. Output and counters are identical either
     /// way; this is for differential testing and debugging. Off by default.
     pub fn set_generic_path(&mut self, on: bool) {

@@ -13,20 +13,18 @@
 //! * [`Custom`]: the profile held at run time (`--profile FILE`), every switch tested
 //!   per pixel. For experiments; slow.
 //!
-//! The four fixed models offer the specialised walkers (`pixelfx::specialize`), each
-//! compiled with its own switches; the custom model runs the generic walker.
+//! Every model runs the span kernels (`pixelfx::span`), each instance compiled with its
+//! own switches; `Board::set_generic_path` runs the reference path instead.
 //!
 //! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
 //! (`with_model!`): the match on the model runs once per bus access, never inside a
 //! stage.
 
-use pixelfx::{PixelModel, PixelProfile, TexelSource, Walker};
+use pixelfx::{PixelModel, PixelProfile};
 use texelfx::{TexelModel, TexelProfile};
 
 use crate::reference::Reference;
 use crate::AccuracyProfile;
-
-use pixelfx::specialize::table_walker;
 
 /// A model of the whole chip set: the Pixelfx's switches and the Texelfx's.
 pub trait ChipModel: PixelModel + TexelModel {}
@@ -35,7 +33,7 @@ impl<M: PixelModel + TexelModel> ChipModel for M {}
 
 /// Defines a model type whose switches are the constant profile `$profile`.
 macro_rules! fixed_model {
-    ($(#[$doc:meta])* $name:ident = $profile:expr $(, specialised = $spec:ident)?) => {
+    ($(#[$doc:meta])* $name:ident = $profile:expr) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug, Default)]
         pub struct $name;
@@ -50,14 +48,6 @@ macro_rules! fixed_model {
             fn pixel(_runtime: &PixelProfile) -> PixelProfile {
                 Self::PROFILE.pixel
             }
-            $(
-                #[inline]
-                fn specialised<T: TexelSource>(
-                    key: pixelfx::specialize::RasterKey,
-                ) -> Option<Walker<T>> {
-                    $spec::<Self, T>(key)
-                }
-            )?
         }
 
         impl TexelModel for $name {
@@ -71,23 +61,19 @@ macro_rules! fixed_model {
 
 fixed_model!(
     /// The hardware model: our reading of the SST-1.
-    Hardware = AccuracyProfile::HARDWARE,
-    specialised = table_walker
+    Hardware = AccuracyProfile::HARDWARE
 );
 fixed_model!(
     /// MAME as a model.
-    Mame = Reference::Mame.profile(),
-    specialised = table_walker
+    Mame = Reference::Mame.profile()
 );
 fixed_model!(
     /// DOSBox Staging as a model.
-    DosboxStaging = Reference::DosboxStaging.profile(),
-    specialised = table_walker
+    DosboxStaging = Reference::DosboxStaging.profile()
 );
 fixed_model!(
     /// 86Box as a model.
-    Box86 = Reference::Box86.profile(),
-    specialised = table_walker
+    Box86 = Reference::Box86.profile()
 );
 
 /// The model of `--profile FILE`: the profile the chips hold at run time, every switch

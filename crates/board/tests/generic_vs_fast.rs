@@ -1,5 +1,5 @@
-//! Differential test of the specialised pixel path (`pixelfx::specialize`) against the
-//! generic path (`Board::set_generic_path(true)`): every conformance, glide-sdk and example
+//! Differential test of the span kernels (`pixelfx::span`, the fast path) against the
+//! generic path (the reference path, pixel by pixel, (`Board::set_generic_path(true)`): every conformance, glide-sdk and example
 //! trace is replayed both ways with the default profile, and the conformance and glide-sdk
 //! ones again with each reference emulator's profile; every dump the trace takes, the final
 //! front, back and aux buffers and the statistics counters must be bit-identical.
@@ -149,7 +149,8 @@ fn example_traces_identical() {
 }
 
 /// The reference emulators' profiles (the conformance vote replays every trace with
-/// them) take the same specialised walkers: both paths agree for each of them too.
+/// them) run the same span kernels, compiled with their switches: both paths agree for
+/// each of them too.
 #[test]
 fn reference_profiles_identical() {
     let mut paths = traces("conformance/traces", |name| !SLOW.contains(&name));

@@ -22,6 +22,8 @@
 use serde::{Deserialize, Serialize};
 use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 
+use crate::span::{Lanes, LANES};
+
 /// How the blend is computed: destination widening, dither subtraction, factor scale and
 /// rounding. `Mame`, `Dosbox` and `Exact255` each reproduce one reference's arithmetic as
 /// a whole; `PerProduct` (the hardware model's) takes each of the three choices as two
@@ -204,8 +206,8 @@ struct Channel {
 
 impl Channel {
     /// `src * fs + dst * fd` for one channel, clamped to 0..=255; `pf` is the channel's
-    /// pre-fog colour. Inlined into the walker so that specialised walkers see the blend
-    /// codes as constants (a closure here was not inlined).
+    /// pre-fog colour. Inlined into the walker so that the blend codes are folded where they
+    /// are constants (a closure here was not inlined).
     #[inline(always)]
     fn blend(&self, s: i32, d: i32, pf: i32) -> i32 {
         let fs = factor(self.src_code, self.sa, self.da, d, self.saturate, self.sc);
@@ -373,6 +375,139 @@ fn blend_rgb(
         channel.blend(s[2], d[2], pf[2]),
     ];
     (rgb, da)
+}
+
+/// [`alpha_blend`]'s inputs for every lane of a chunk of a span ([`crate::span`]).
+pub struct BlendLanes<'a> {
+    /// The fogged colour, R, G, B, A.
+    pub src: &'a [Lanes; 4],
+    /// The colour before fog, R, G, B (A unused).
+    pub prefog: &'a [Lanes; 4],
+    /// The destination RGB565 word (0 where the lane has none).
+    pub dst_rgb565: &'a Lanes,
+    /// The aux word, where `has_aux`.
+    pub dst_aux: &'a Lanes,
+    /// Whether the lane has an aux word.
+    pub has_aux: &'a [bool; LANES],
+    /// The dither matrix entry at the lane's pixel.
+    pub dither_value: &'a Lanes,
+}
+
+/// [`factor`] for every lane, `code` chosen once.
+#[inline(always)]
+fn factor_lanes(
+    code: BlendFactor,
+    sa: &Lanes,
+    da: &Lanes,
+    other: &Lanes,
+    fifteen: &Lanes,
+    (one, plus): (i32, i32),
+) -> Lanes {
+    use core::array::from_fn;
+    match code {
+        BlendFactor::Zero => [0; LANES],
+        BlendFactor::SrcAlpha => from_fn(|i| sa[i] + plus),
+        BlendFactor::Color => from_fn(|i| other[i] + plus),
+        BlendFactor::DstAlpha => from_fn(|i| da[i] + plus),
+        BlendFactor::One => [one; LANES],
+        BlendFactor::OneMinusSrcAlpha => from_fn(|i| one - sa[i]),
+        BlendFactor::OneMinusColor => from_fn(|i| one - other[i]),
+        BlendFactor::OneMinusDstAlpha => from_fn(|i| one - da[i]),
+        BlendFactor::SaturateOrColorBeforeFog => from_fn(|i| fifteen[i] + plus),
+        _ => [0; LANES], // reserved 8..=14
+    }
+}
+
+/// [`alpha_blend`] (with blending enabled) for every lane at once: the same arithmetic,
+/// its choices made once, into `out` (R, G, B, A). Lanes without a pixel compute
+/// harmless garbage.
+#[inline(always)]
+pub fn alpha_blend_lanes(
+    alpha_mode: AlphaMode,
+    fbz_mode: FbzMode,
+    input: &BlendLanes<'_>,
+    profile: BlendProfile,
+    out: &mut [Lanes; 4],
+) {
+    use core::array::from_fn;
+    let arith = profile.arithmetic;
+    let zero_fill = fbz_mode.enable_dithering()
+        && fbz_mode.dither_2x2()
+        && profile.dither_2x2 == Dither2x2Blend::ZeroFill;
+    let sc = scale(arith);
+    let (one, _) = sc;
+    let replicate = arith != BlendArithmetic::Dosbox && !zero_fill;
+
+    // Destination colour and alpha (see `widen`).
+    let p = input.dst_rgb565;
+    let rep = |v: i32, shift: i32| if replicate { v | v >> shift } else { v };
+    let mut d: [Lanes; 3] = [
+        from_fn(|i| rep((p[i] >> 8) & 0xf8, 5)),
+        from_fn(|i| rep((p[i] >> 3) & 0xfc, 6)),
+        from_fn(|i| rep((p[i] << 3) & 0xf8, 5)),
+    ];
+    let planes = fbz_mode.enable_alpha_planes();
+    let da: Lanes = from_fn(|i| match (planes, input.has_aux[i]) {
+        (true, true) if arith == BlendArithmetic::Exact255 => input.dst_aux[i] & 0xff,
+        (true, true) => input.dst_aux[i],
+        _ => 0xff,
+    });
+
+    if fbz_mode.dither_subtract() {
+        let dv = input.dither_value;
+        match arith {
+            BlendArithmetic::PerProduct | BlendArithmetic::Mame | BlendArithmetic::Dosbox
+                if fbz_mode.enable_dithering() =>
+            {
+                for i in 0..LANES {
+                    let k = 15 - dv[i];
+                    d[0][i] += k >> 1;
+                    d[1][i] += k >> 2;
+                    d[2][i] += k >> 1;
+                }
+            }
+            BlendArithmetic::Exact255 => {
+                for i in 0..LANES {
+                    d[0][i] = dither_sub_86box(d[0][i], (10 - dv[i]) >> 1, 4);
+                    d[1][i] = dither_sub_86box(d[1][i], (12 - dv[i]) >> 2, 2);
+                    d[2][i] = dither_sub_86box(d[2][i], (10 - dv[i]) >> 1, 4);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    let s = input.src;
+    let sa = &s[3];
+    let saturate: Lanes = from_fn(|i| sa[i].min(one - da[i]));
+    let src_code = alpha_mode.src_rgb_blend();
+    let dst_code = alpha_mode.dst_rgb_blend();
+    let saturate_dst = src_code == BlendFactor::SaturateOrColorBeforeFog
+        && profile.saturate == SaturateOperand::Destination;
+    for c in 0..3 {
+        let fs = factor_lanes(src_code, sa, &da, &d[c], &saturate, sc);
+        let fd = factor_lanes(dst_code, sa, &da, &s[c], &input.prefog[c], sc);
+        let sv = if saturate_dst { &d[c] } else { &s[c] };
+        let dc = &d[c];
+        out[c] = match arith {
+            // Arithmetic shift: floor, as the references' signed shifts.
+            BlendArithmetic::PerProduct | BlendArithmetic::Dosbox => {
+                from_fn(|i| (((sv[i] * fs[i]) >> 8) + ((dc[i] * fd[i]) >> 8)).clamp(0, 255))
+            }
+            BlendArithmetic::Mame => {
+                from_fn(|i| ((sv[i] * fs[i] + dc[i] * fd[i]) >> 8).clamp(0, 255))
+            }
+            BlendArithmetic::Exact255 => {
+                from_fn(|i| (sv[i] * fs[i] / 255 + dc[i] * fd[i] / 255).clamp(0, 255))
+            }
+        };
+    }
+    let a_src = alpha_mode.src_alpha_blend() == BlendFactor::One;
+    let a_dst = alpha_mode.dst_alpha_blend() == BlendFactor::One;
+    out[3] = from_fn(|i| {
+        let a = if a_src { sa[i] } else { 0 } + if a_dst { da[i] } else { 0 };
+        a.clamp(0, 255)
+    });
 }
 
 #[cfg(test)]

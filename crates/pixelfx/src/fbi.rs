@@ -49,7 +49,7 @@ pub struct Fbi {
     profile: PixelProfile,
     /// Dither tables for the profile's 2x2 matrix.
     pub(crate) dither: Dither,
-    /// Force the generic (unspecialised) triangle walker; see [`Fbi::set_generic_path`].
+    /// Force the reference path (the pipeline pixel by pixel); see [`Fbi::set_generic_path`].
     pub(crate) generic_path: bool,
 }
 
@@ -148,7 +148,7 @@ impl Fbi {
             }
             // The mode registers keep only the bits the SST-1 implements (spec 5 register
             // table "Bits"), so that a drawing state is the same whatever a driver writes
-            // into reserved bits (`crate::specialize` keys on the stored values).
+            // into reserved bits.
             addr::FBZ_COLOR_PATH | addr::FOG_MODE | addr::FBZ_MODE | addr::LFB_MODE => {
                 self.regs[idx] = value & map::mask_of(offset)
             }

@@ -192,10 +192,10 @@ pub fn apply_fog(
     let out: [i32; 3] = if mode.fog_constant() {
         // Constant fog bypasses the multiplier (spec 5.17: bit 5 overrides bits 4:3).
         let add = add_back || profile.constant_mult == FogConstantMult::AddToColor;
-        crate::specialize::per_channel(|i| if add { cin[i] + fog[i] } else { fog[i] })
+        per_channel(|i| if add { cin[i] + fog[i] } else { fog[i] })
     } else {
         let factor = fog_alpha(mode, table, input, profile) + 1;
-        crate::specialize::per_channel(|i| {
+        per_channel(|i| {
             let f = if mode.fog_add() { 0 } else { fog[i] };
             let f = if add_back { f - cin[i] } else { f };
             // Arithmetic shift: floor, as in all three references.
@@ -217,6 +217,13 @@ pub fn apply_fog(
         b: out[2].clamp(0, 255) as u8,
         a: c.a,
     }
+}
+
+/// `[f(0), f(1), f(2)]`: one value per colour channel, written out so that the compiler
+/// inlines the channel arithmetic instead of calling it three times.
+#[inline(always)]
+fn per_channel(mut f: impl FnMut(usize) -> i32) -> [i32; 3] {
+    [f(0), f(1), f(2)]
 }
 
 #[cfg(test)]

@@ -21,12 +21,13 @@ pub mod pipeline;
 pub mod profile;
 pub mod raster;
 pub mod setup;
-pub mod specialize;
+pub mod span;
 pub mod stats;
 pub mod stipple;
 
 pub use fbi::{Command, Fbi};
-pub use model::{PixelModel, RuntimeProfile, Walker};
+pub use model::{PixelModel, RuntimeProfile};
 pub use profile::PixelProfile;
 pub use raster::{NoTexture, TexelSource};
+pub use span::{Lanes, LANES};
 pub use stats::{Kill, Stats};

@@ -19,8 +19,7 @@ use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
 use crate::iter::{wfloat, Iterated};
 use crate::model::PixelModel;
-use crate::profile::{AuxWrite, ClipRightEdge, OverrideTexel, ZAlphaByte};
-use crate::specialize::{value, Known, LIVE};
+use crate::profile::{ClipRightEdge, OverrideTexel, ZAlphaByte};
 use crate::stats::Kill;
 use crate::{alpha_test, blend, depth, fog, stipple};
 
@@ -111,8 +110,15 @@ pub enum Source {
 }
 
 impl Fbi {
-    /// Run one pixel through the pipeline, reading every mode register at run time (the
-    /// generic path). See [`Fbi::shade`] for the arguments.
+    /// Run one pixel through the pipeline. `x` is the screen column, `y` the raster row
+    /// (used for dithering), `scry` the frame-buffer row after the Y-origin flip.
+    /// `texel` is called only if the pixel survives the depth test and texturing is on.
+    /// `prow` is the row the dither and stipple patterns are indexed with (see
+    /// [`crate::profile::PatternRow`]).
+    ///
+    /// `M` is the model of the chip ([`crate::model`]). This is the reference path: every
+    /// mode bit is tested for every pixel. The span kernels ([`crate::span`]) run the same
+    /// stages a chunk of pixels at a time.
     #[inline]
     pub(crate) fn shade_pixel<M: PixelModel>(
         &mut self,
@@ -125,42 +131,10 @@ impl Fbi {
         stipple_state: &mut u32,
         texel: impl FnOnce() -> Rgba,
     ) -> Result<(), Kill> {
-        self.shade::<M, LIVE, LIVE, LIVE, LIVE>(st, x, prow, scry, it, source, stipple_state, texel)
-    }
-
-    /// Run one pixel through the pipeline. `x` is the screen column, `y` the raster row
-    /// (used for dithering), `scry` the frame-buffer row after the Y-origin flip.
-    /// `texel` is called only if the pixel survives the depth test and texturing is on.
-    /// `prow` is the row the dither and stipple patterns are indexed with (see
-    /// [`crate::profile::PatternRow`]).
-    ///
-    /// `M` is the model of the chip ([`crate::model`]). `CP`, `AM`, `FM` and `ZM` are the bits of `fbzColorPath`, `alphaMode`, `fogMode`
-    /// and `fbzMode` known at compile time ([`LIVE`]: none; see [`crate::specialize`]);
-    /// the caller guarantees that they equal `st`'s. The stages are the same code either
-    /// way: known bits only let the compiler fold the bit tests and drop the stages that
-    /// are off.
-    #[inline(always)]
-    pub(crate) fn shade<
-        M: PixelModel,
-        const CP: Known,
-        const AM: Known,
-        const FM: Known,
-        const ZM: Known,
-    >(
-        &mut self,
-        st: &DrawState,
-        x: i32,
-        prow: i32,
-        scry: i32,
-        it: &Iterated,
-        source: Source,
-        stipple_state: &mut u32,
-        texel: impl FnOnce() -> Rgba,
-    ) -> Result<(), Kill> {
-        let mode = FbzMode(value(ZM, st.mode.0));
-        let color_path = FbzColorPath(value(CP, st.color_path.0));
-        let am = AlphaMode(value(AM, st.alpha_mode.0));
-        let fog_mode = FogMode(value(FM, st.fog_mode.0));
+        let mode = st.mode;
+        let color_path = st.color_path;
+        let am = st.alpha_mode;
+        let fog_mode = st.fog_mode;
         let profile = M::pixel(&self.profile());
 
         // --- stipple ---
@@ -298,13 +272,7 @@ impl Fbi {
                         .rgb565(st.dither, x as u32, prow as u32, out.r, out.g, out.b);
             }
         }
-        let aux_enabled = match profile.aux_write {
-            AuxWrite::MaskOnly => mode.aux_buffer_mask(),
-            AuxWrite::MaskAndDepthOrAlphaPlanes => {
-                mode.aux_buffer_mask() && (mode.enable_depthbuffer() || mode.enable_alpha_planes())
-            }
-        };
-        if aux_enabled {
+        if crate::span::aux_enabled(mode, profile.aux_write) {
             if let Some(i) = aux_index {
                 self.fb.ram[i] = if mode.enable_alpha_planes() {
                     out.a as u16

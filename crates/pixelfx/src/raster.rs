@@ -1,14 +1,14 @@
 //! Triangle rasterization: spans from [`crate::setup`], clipping, and the per-pixel walk
 //! with the iterators (spec 5.15 `triangleCMD`, 5.21 clip registers, 5.19 Y origin).
 
-use sst1_regs::{FbzMode, Rgba};
+use sst1_regs::Rgba;
 
 use crate::fbi::Fbi;
 use crate::iter::Iterated;
 use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::StippleRotate;
-use crate::specialize::{value, Known, RasterKey, LIVE};
+use crate::span::{ChunkAt, Lanes, TriangleLanes, LANES};
 use crate::{box86, setup};
 
 /// What the TMU chain gives the FBI for one pixel.
@@ -22,6 +22,35 @@ pub trait TexelSource {
     /// texels must not depend on whether it was called.
     #[inline]
     fn begin_span(&mut self, _dx: i32, _dy: i32, _len: usize) {}
+
+    /// The texels of the live lanes of one chunk of a span ([`crate::span`]): lane `i`
+    /// is the pixel at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`; for each
+    /// `i < n` with `alive[i]`, its texel's R, G, B, A go to `out[0..4][i]`. Other lanes
+    /// of `out` are left as they are. Texels are asked for in lane order, exactly those
+    /// [`TexelSource::texel`] would be asked for one at a time, so a source with state
+    /// (a texture cache) sees the same sequence; this default does just that.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn texels(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        out: &mut [Lanes; 4],
+    ) {
+        for i in 0..n.min(LANES) {
+            if alive[i] {
+                let t = self.texel(dx0 + i as i32, dy, x0 + i as i32, y);
+                out[0][i] = t.r as i32;
+                out[1][i] = t.g as i32;
+                out[2][i] = t.b as i32;
+                out[3][i] = t.a as i32;
+            }
+        }
+    }
 }
 
 /// The source for untextured drawing: always zero.
@@ -39,8 +68,8 @@ impl Fbi {
     /// Draw the triangle held in the parameter registers (the `triangleCMD` command).
     /// The caller has applied subpixel correction if `fbzColorPath` asks for it.
     ///
-    /// Unless [`Fbi::set_generic_path`] forced the generic path, a walker specialised for
-    /// the triangle's mode registers is used when [`crate::specialize`] has one.
+    /// Runs the span kernels ([`crate::span`]) unless [`Fbi::set_generic_path`] forced
+    /// the reference path (the pipeline pixel by pixel, every mode bit tested per pixel).
     ///
     /// `M` is the model of the chip ([`crate::model`]); the caller guarantees that the
     /// profile this FBI holds is `M`'s.
@@ -51,19 +80,37 @@ impl Fbi {
             return;
         };
         let st = DrawState::capture::<M>(self, dest);
-        let specialised = if self.generic_path {
-            None
+        if self.generic_path {
+            self.walk::<M, T, false>(&st, tex);
         } else {
-            M::specialised::<T>(RasterKey::of_state(&st))
-        };
-        let walk = specialised.unwrap_or(Fbi::walk::<M, T, LIVE, LIVE, LIVE, LIVE>);
-        walk(self, &st, tex);
+            self.walk_spans::<M, T>(&st, tex);
+        }
     }
 
-    /// Force the generic path (every mode register read at run time for every pixel)
-    /// instead of the specialised walkers. Both give identical pixels and counters; the
-    /// switch exists to prove that (`crates/board/tests/generic_vs_fast.rs`) and to
-    /// debug the specialisation.
+    /// The span kernels, compiled for the best vector instructions the CPU has: with AVX2
+    /// where the CPU has it (found at run time), for the baseline target otherwise. Both
+    /// compute the same integers; the choice changes only the speed.
+    fn walk_spans<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            unsafe { self.walk_spans_avx2::<M, T>(st, tex) };
+            return;
+        }
+        self.walk::<M, T, true>(st, tex);
+    }
+
+    /// [`Fbi::walk`] with the span kernels, compiled with AVX2 enabled.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn walk_spans_avx2<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
+        self.walk::<M, T, true>(st, tex);
+    }
+
+    /// Force the reference path (every mode register read at run time for every pixel)
+    /// instead of the span kernels. Both give identical pixels and counters; the switch
+    /// exists to prove that (`crates/board/tests/generic_vs_fast.rs`) and to debug the
+    /// kernels.
     pub fn set_generic_path(&mut self, on: bool) {
         self.generic_path = on;
     }
@@ -73,30 +120,16 @@ impl Fbi {
         self.generic_path
     }
 
-    /// Walk the triangle's spans and shade its pixels with the bits of `fbzColorPath`
-    /// (`CP`), `alphaMode` (`AM`), `fogMode` (`FM`) and `fbzMode` (`ZM`) that are known
-    /// at compile time folded in (see [`crate::specialize::Known`]); the rest is read
-    /// from `st`. The caller guarantees that the known bits equal `st`'s.
-    pub(crate) fn walk<
-        M: PixelModel,
-        T: TexelSource,
-        const CP: Known,
-        const AM: Known,
-        const FM: Known,
-        const ZM: Known,
-    >(
+    /// Walk the triangle's spans and shade their pixels: a chunk of up to
+    /// [`crate::span::LANES`] pixels at a time with the span kernels (`SPANS`), or one
+    /// pixel at a time with the reference path.
+    #[inline(always)]
+    fn walk<M: PixelModel, T: TexelSource, const SPANS: bool>(
         &mut self,
         st: &DrawState,
         tex: &mut T,
     ) {
-        debug_assert!(
-            value(CP, st.color_path.0) == st.color_path.0
-                && value(AM, st.alpha_mode.0) == st.alpha_mode.0
-                && value(FM, st.fog_mode.0) == st.fog_mode.0
-                && value(ZM, st.mode.0) == st.mode.0,
-            "walker specialised for other modes"
-        );
-        let mode = FbzMode(value(ZM, st.mode.0));
+        let mode = st.mode;
         let flip = mode.y_origin();
         let profile = M::pixel(&self.profile());
         let origin = profile.param_origin;
@@ -107,6 +140,7 @@ impl Fbi {
             && mode.enable_stipple()
             && !mode.enable_stipple_pattern();
         let mut copy = per_triangle.then(|| box86::StippleCopy::new(st.stipple));
+        let consts = SPANS.then(|| TriangleLanes::new(st));
         for span in setup::spans(&params, profile.edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);
             // Every pixel the walker visits counts as "in" (spec 5.31), clipped or not.
@@ -125,18 +159,46 @@ impl Fbi {
                 continue;
             }
             let dy = span.y - ay;
-            let mut it = Iterated::at(&params, start - ax, dy);
             let mut stipple = st.stipple;
             let prow = profile.pattern_row.row(span.y, scry);
             tex.begin_span(start - ax, dy, (stop - start) as usize);
             if let Some(c) = &mut copy {
                 c.step_row(start, stop, params.right_to_left);
             }
+            if let Some(consts) = &consts {
+                let mut x0 = start;
+                while x0 < stop {
+                    let n = ((stop - x0) as usize).min(LANES);
+                    let at = ChunkAt {
+                        x0,
+                        n,
+                        y: span.y,
+                        scry,
+                        prow,
+                        span_start: start,
+                        ax,
+                        dy,
+                    };
+                    let it = Iterated::at(&params, x0 - ax, dy);
+                    self.shade_chunk::<M, T>(
+                        st,
+                        &at,
+                        &it,
+                        &mut stipple,
+                        copy.as_ref(),
+                        tex,
+                        consts,
+                    );
+                    x0 += n as i32;
+                }
+                continue;
+            }
+            let mut it = Iterated::at(&params, start - ax, dy);
             for x in start..stop {
                 if let Some(c) = &copy {
                     stipple = c.at((x - start) as usize);
                 }
-                let r = self.shade::<M, CP, AM, FM, ZM>(
+                let r = self.shade_pixel::<M>(
                     st,
                     x,
                     prow,

@@ -56,6 +56,18 @@ impl Stats {
         }
     }
 
+    /// Account for `count` pixels killed for the same reason.
+    #[inline]
+    pub fn kill_many(&mut self, k: Kill, count: u32) {
+        let count = u64::from(count);
+        match k {
+            Kill::DepthFunc => self.zfunc_fail += count,
+            Kill::Chroma => self.chroma_fail += count,
+            Kill::AlphaMask | Kill::AlphaFunc => self.afunc_fail += count,
+            Kill::Clip | Kill::Stipple => {}
+        }
+    }
+
     /// Clear the five hardware counters (`nopCMD` bit 0, spec 5.22).
     pub fn clear_hardware(&mut self) {
         self.pixels_in = 0;

@@ -163,6 +163,44 @@ impl Dither {
         (r5 as u16) << 11 | (g6 as u16) << 5 | b5 as u16
     }
 
+    /// [`Dither::rgb565`] for a run of pixels on one row: pixel `i` is at `(x0 + i, y)`
+    /// with colour `(r[i], g[i], b[i])` (each 0..=255) and goes to `out[i]`. The same
+    /// values as one call per pixel, in a loop the compiler can vectorise when dithering
+    /// is off.
+    #[inline(always)]
+    pub fn rgb565_row(
+        &self,
+        kind: DitherKind,
+        x0: u32,
+        y: u32,
+        [r, g, b]: [&[i32]; 3],
+        out: &mut [u16],
+    ) {
+        let pack = |r5: u8, g6: u8, b5: u8| (r5 as u16) << 11 | (g6 as u16) << 5 | b5 as u16;
+        match kind {
+            DitherKind::Off => {
+                for (o, ((r, g), b)) in out.iter_mut().zip(r.iter().zip(g).zip(b)) {
+                    *o = ((*r as u16 & 0xf8) << 8) | ((*g as u16 & 0xfc) << 3) | (*b as u16 >> 3);
+                }
+            }
+            _ => {
+                let cells: [&Cell; 4] = core::array::from_fn(|i| {
+                    self.cell(kind, x0.wrapping_add(i as u32), y)
+                        .unwrap_or(&self.cells[0])
+                });
+                for (i, (o, ((r, g), b))) in out.iter_mut().zip(r.iter().zip(g).zip(b)).enumerate()
+                {
+                    let c = cells[i & 3];
+                    *o = pack(
+                        c[0][*r as u8 as usize],
+                        c[1][*g as u8 as usize],
+                        c[0][*b as u8 as usize],
+                    );
+                }
+            }
+        }
+    }
+
     /// The matrix entry (0..=15) that `kind` uses at `(x, y)`; 0 when dithering is off.
     /// The alpha-blend dither subtraction (`fbzMode` bit 19) works from this value.
     #[inline]

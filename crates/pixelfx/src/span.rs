@@ -1,0 +1,626 @@
+//! Span kernels: the pixel pipeline of [`crate::pipeline`] run one stage at a time over
+//! up to [`LANES`] pixels of a span (structure of arrays), for whatever drawing state a
+//! triangle uses.
+//!
+//! [`crate::pipeline::Fbi::shade`] runs the stages for one pixel and tests every mode
+//! bit for every pixel: the reference path. Here the stages are the same, in the same
+//! order, with the same kill reasons and counters, but each stage is a loop over the
+//! chunk's lanes whose mode decisions are taken once per chunk: an input selection
+//! becomes a choice of source array, a switch becomes a mask, a disabled stage is not
+//! run. No state is special: every combination of `fbzColorPath`, `alphaMode`,
+//! `fogMode` and `fbzMode` runs these kernels, so there is no table of states and no
+//! fallback for unusual ones. `crates/board/tests/generic_vs_fast.rs` replays every
+//! trace, and a stream of random states, through both paths and requires identical
+//! buffers and counters.
+//!
+//! A chunk's lanes are distinct pixels of one row, so reading all their destination
+//! words before writing any gives what the pixel-by-pixel order gives, with one
+//! exception: colour and aux buffers placed so that one lane's colour word is another
+//! lane's aux word (a layout no driver sets, but registers allow). [`Fbi::shade_chunk`]
+//! detects that and shades such a chunk pixel by pixel.
+
+use sst1_regs::{
+    AlphaLocalSelect, AlphaSelect, CcMselect, DepthFunction, FbzColorPath, FbzMode, RgbSelect, Rgba,
+};
+
+use crate::fbi::Fbi;
+use crate::iter::{wfloat, Iterated};
+use crate::model::PixelModel;
+use crate::pipeline::{DrawState, Source};
+use crate::profile::{AlphaTestInput, AuxWrite, ZAlphaByte};
+use crate::raster::TexelSource;
+use crate::stats::Kill;
+use crate::{alpha_test, blend, fog, stipple};
+
+/// The most pixels one chunk holds.
+pub const LANES: usize = 64;
+
+/// One value per lane.
+pub type Lanes = [i32; LANES];
+
+/// The lanes `lo..hi` of a chunk whose words exist in one buffer, and the word index of
+/// lane `lo` (lane `i`'s word is `first + i - lo`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Words {
+    lo: usize,
+    hi: usize,
+    first: usize,
+}
+
+impl Words {
+    const NONE: Words = Words {
+        lo: 0,
+        hi: 0,
+        first: 0,
+    };
+
+    /// The words of `n` lanes from column `x0` of frame-buffer row `y` in the buffer at
+    /// word `base`, as [`crate::fb::FrameBuffer::index`] finds them one at a time.
+    fn of(fbi: &Fbi, base: usize, x0: i32, n: usize, y: i32) -> Self {
+        if y < 0 {
+            return Self::NONE;
+        }
+        let row = fbi.fb.layout.row_pixels as i64;
+        let start = base as i64 + y as i64 * row + x0 as i64;
+        let len = fbi.fb.ram.len() as i64;
+        let lo = (-(x0 as i64)).clamp(0, n as i64);
+        let hi = (len - start).clamp(lo, n as i64);
+        if lo >= hi {
+            return Self::NONE;
+        }
+        Self {
+            lo: lo as usize,
+            hi: hi as usize,
+            first: (start + lo) as usize,
+        }
+    }
+
+    /// Whether a write through `self` to one lane can land on a word that `other` reads
+    /// for a different lane.
+    fn crosses(&self, other: &Words) -> bool {
+        if self.lo >= self.hi || other.lo >= other.hi {
+            return false;
+        }
+        let (a0, a1) = (self.first, self.first + (self.hi - self.lo));
+        let (b0, b1) = (other.first, other.first + (other.hi - other.lo));
+        let overlap = a0 < b1 && b0 < a1;
+        // Same lane-to-word mapping: lane i meets only lane i.
+        let same = self.first as i64 - self.lo as i64 == other.first as i64 - other.lo as i64;
+        overlap && !same
+    }
+}
+
+/// Where one chunk lies: `n` pixels from screen column `x0` on raster row `y`.
+pub(crate) struct ChunkAt {
+    /// First column.
+    pub x0: i32,
+    /// Pixels, 1..=[`LANES`].
+    pub n: usize,
+    /// Raster row (what the TMUs see).
+    pub y: i32,
+    /// Frame-buffer row after the Y-origin flip.
+    pub scry: i32,
+    /// Row the dither and stipple patterns are indexed with.
+    pub prow: i32,
+    /// Column of the span's first pixel (86Box's per-triangle stipple copy is indexed
+    /// from it).
+    pub span_start: i32,
+    /// Vertex A's column and the row offset from it (the TMUs' pixel offsets).
+    pub ax: i32,
+    pub dy: i32,
+}
+
+/// The three 8-bit channels and alpha of a colour for every lane.
+#[derive(Clone, Copy)]
+struct ColourLanes {
+    c: [Lanes; 4],
+}
+
+impl ColourLanes {
+    const ZERO: ColourLanes = ColourLanes { c: [[0; LANES]; 4] };
+
+    fn splat(v: Rgba) -> Self {
+        Self {
+            c: [
+                [v.r as i32; LANES],
+                [v.g as i32; LANES],
+                [v.b as i32; LANES],
+                [v.a as i32; LANES],
+            ],
+        }
+    }
+
+    #[inline(always)]
+    fn set(&mut self, i: usize, v: Rgba) {
+        self.c[0][i] = v.r as i32;
+        self.c[1][i] = v.g as i32;
+        self.c[2][i] = v.b as i32;
+        self.c[3][i] = v.a as i32;
+    }
+
+    #[inline(always)]
+    fn at(&self, i: usize) -> Rgba {
+        Rgba {
+            r: self.c[0][i] as u8,
+            g: self.c[1][i] as u8,
+            b: self.c[2][i] as u8,
+            a: self.c[3][i] as u8,
+        }
+    }
+}
+
+/// What every chunk of a triangle reads and no stage changes: the constant colours
+/// spread over the lanes, built once per triangle.
+pub(crate) struct TriangleLanes {
+    color0: ColourLanes,
+    color1: ColourLanes,
+    /// `zaColor`'s depth (the depth test's source with `fbzMode` bit 20).
+    za_depth: Lanes,
+    zero: Lanes,
+    zero_colour: ColourLanes,
+}
+
+impl TriangleLanes {
+    pub(crate) fn new(st: &DrawState) -> Self {
+        Self {
+            color0: ColourLanes::splat(st.color0),
+            color1: ColourLanes::splat(st.color1),
+            za_depth: [(st.za_color & 0xffff) as i32; LANES],
+            zero: [0; LANES],
+            zero_colour: ColourLanes::ZERO,
+        }
+    }
+}
+
+/// Kill the live lanes of `alive` for which `fails` holds, counting each as `kill`.
+#[inline(always)]
+fn kill_where(
+    fbi: &mut Fbi,
+    alive: &mut [bool; LANES],
+    n: usize,
+    kill: Kill,
+    fails: impl Fn(usize) -> bool,
+) {
+    let mut killed = 0u32;
+    for (i, a) in alive.iter_mut().enumerate().take(n) {
+        let f = *a && fails(i);
+        killed += f as u32;
+        *a &= !f;
+    }
+    if killed > 0 {
+        fbi.stats.kill_many(kill, killed);
+    }
+}
+
+/// `out = clamp((other - sub) * (factor ^ xor + 1) >> 8 + add) ^ invert` for every lane:
+/// one channel of a combine unit (see [`crate::color_path::combine`]), its selections
+/// made by the caller.
+#[inline(always)]
+fn combine_channel(
+    out: &mut Lanes,
+    other: &Lanes,
+    sub: &Lanes,
+    factor: &Lanes,
+    add: &Lanes,
+    xor: i32,
+    invert: i32,
+) {
+    for i in 0..LANES {
+        let v = ((other[i] - sub[i]) * ((factor[i] ^ xor) + 1)) >> 8;
+        out[i] = (v + add[i]).clamp(0, 255) ^ invert;
+    }
+}
+
+impl Fbi {
+    /// Shade one chunk of a span: every stage of [`Fbi::shade_pixel`], a stage at a time.
+    /// `it` holds the iterators at the chunk's first pixel; `stipple_state` is the row's
+    /// rotating stipple register and `copy` 86Box's per-triangle stipple copy, as in the
+    /// walker.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        at: &ChunkAt,
+        it: &Iterated,
+        stipple_state: &mut u32,
+        copy: Option<&crate::box86::StippleCopy>,
+        tex: &mut T,
+        consts: &TriangleLanes,
+    ) {
+        let n = at.n;
+        debug_assert!((1..=LANES).contains(&n));
+        let mode = st.mode;
+        let dest_words = Words::of(self, st.dest, at.x0, n, at.scry);
+        let aux_words = st
+            .aux
+            .map_or(Words::NONE, |a| Words::of(self, a, at.x0, n, at.scry));
+        if dest_words.crosses(&aux_words) {
+            self.shade_chunk_per_pixel::<M, T>(st, at, it, stipple_state, copy, tex);
+            return;
+        }
+        let profile = M::pixel(&self.profile());
+        let cp = st.color_path;
+        let am = st.alpha_mode;
+        let fog_mode = st.fog_mode;
+        let p = self.params;
+        let zero = &consts.zero;
+        let mut alive = [false; LANES];
+        alive[..n].fill(true);
+
+        // --- stipple ---
+        if mode.enable_stipple() {
+            let pattern = mode.enable_stipple_pattern();
+            for (i, a) in alive.iter_mut().enumerate().take(n) {
+                let x = at.x0 + i as i32;
+                if let Some(c) = copy {
+                    *stipple_state = c.at((x - at.span_start) as usize);
+                }
+                if !stipple::test(pattern, stipple_state, st.stipple, x, at.prow) {
+                    *a = false;
+                    self.stats.kill(Kill::Stipple);
+                }
+            }
+        }
+
+        // --- iterators, depth value and test ---
+        let clamp = profile.iterator_clamp;
+        let z16: Lanes = core::array::from_fn(|i| {
+            clamp.z(it.z.wrapping_add(p.dzdx.wrapping_mul(i as i32))) as i32
+        });
+        let w_at = |i: usize| it.w.wrapping_add(p.dwdx.wrapping_mul(i as i64));
+        let wf: Lanes = if mode.wbuffer_select() || fog_mode.enable_fog() {
+            core::array::from_fn(|i| wfloat(w_at(i), profile.wfloat) as i32)
+        } else {
+            *zero
+        };
+        let bias = mode.enable_depth_bias().then_some(st.za_color as u16);
+        let unbiased = if mode.wbuffer_select() { &wf } else { &z16 };
+        let depth: Lanes = match bias {
+            Some(b) => {
+                let b = b as i16 as i32;
+                core::array::from_fn(|i| (unbiased[i] + b).clamp(0, 0xffff))
+            }
+            None => *unbiased,
+        };
+        if mode.enable_depthbuffer() {
+            let func = mode.depth_function();
+            let source: &Lanes = if mode.depth_source_compare() {
+                &consts.za_depth
+            } else {
+                &depth
+            };
+            // Without an aux buffer only "never" can fail (MAME, DOSBox Staging).
+            let no_aux_fails = func == DepthFunction::Never;
+            let mut fails = [no_aux_fails; LANES];
+            let w = aux_words;
+            let ram = &self.fb.ram[w.first..w.first + (w.hi - w.lo)];
+            for (f, (s, d)) in fails[w.lo..w.hi]
+                .iter_mut()
+                .zip(source[w.lo..w.hi].iter().zip(ram))
+            {
+                *f = !func.passes(*s, *d as i32);
+            }
+            kill_where(self, &mut alive, n, Kill::DepthFunc, |i| fails[i]);
+        }
+
+        // --- colour selection ---
+        let texel_store: ColourLanes;
+        let texel: &ColourLanes = if cp.texture_enable() && st.fetch_texel {
+            let mut t = ColourLanes::ZERO;
+            tex.texels(at.x0 - at.ax, at.dy, at.x0, at.y, &alive, n, &mut t.c);
+            texel_store = t;
+            &texel_store
+        } else {
+            &consts.zero_colour
+        };
+        let iterated = ColourLanes {
+            c: core::array::from_fn(|c| {
+                let (s, d) = (it.argb[c], p.dx[c]);
+                core::array::from_fn(|i| {
+                    clamp.colour(s.wrapping_add(d.wrapping_mul(i as i32))) as i32
+                })
+            }),
+        };
+        let (color0, color1) = (&consts.color0, &consts.color1);
+        let other_rgb: [&Lanes; 3] = match cp.cc_rgbselect() {
+            RgbSelect::IteratedRgb => [&iterated.c[0], &iterated.c[1], &iterated.c[2]],
+            RgbSelect::Texture => [&texel.c[0], &texel.c[1], &texel.c[2]],
+            RgbSelect::Color1 => [&color1.c[0], &color1.c[1], &color1.c[2]],
+            _ => [zero; 3],
+        };
+        let other_a: &Lanes = match cp.cc_aselect() {
+            AlphaSelect::IteratedAlpha => &iterated.c[3],
+            AlphaSelect::Texture => &texel.c[3],
+            AlphaSelect::Color1 => &color1.c[3],
+            _ => zero,
+        };
+
+        // --- chroma key, alpha mask, alpha test on c_other ---
+        if mode.enable_chromakey() {
+            let key = st.chroma_key;
+            let (kr, kg, kb) = (
+                (key >> 16 & 0xff) as i32,
+                (key >> 8 & 0xff) as i32,
+                (key & 0xff) as i32,
+            );
+            kill_where(self, &mut alive, n, Kill::Chroma, |i| {
+                other_rgb[0][i] == kr && other_rgb[1][i] == kg && other_rgb[2][i] == kb
+            });
+        }
+        if mode.enable_alpha_mask() {
+            kill_where(self, &mut alive, n, Kill::AlphaMask, |i| {
+                other_a[i] & 1 == 0
+            });
+        }
+        let alpha_test = am.alpha_test_enable();
+        let (func, reference) = (am.alpha_function(), am.alpha_ref());
+        let test_combined = profile.alpha_test_input == AlphaTestInput::Combined;
+        if alpha_test && !test_combined {
+            kill_where(self, &mut alive, n, Kill::AlphaFunc, |i| {
+                !alpha_test::test(func, other_a[i] as u8, reference)
+            });
+        }
+
+        // --- local selection ---
+        let local_rgb_store: ColourLanes;
+        let local_rgb: [&Lanes; 3] = if cp.cc_localselect_override() {
+            // Texture alpha bit 7 chooses color0 instead of the iterated colour.
+            local_rgb_store = ColourLanes {
+                c: core::array::from_fn(|c| {
+                    core::array::from_fn(|i| {
+                        if texel.c[3][i] & 0x80 != 0 {
+                            color0.c[c][i]
+                        } else {
+                            iterated.c[c][i]
+                        }
+                    })
+                }),
+            };
+            [
+                &local_rgb_store.c[0],
+                &local_rgb_store.c[1],
+                &local_rgb_store.c[2],
+            ]
+        } else if cp.cc_localselect() {
+            [&color0.c[0], &color0.c[1], &color0.c[2]]
+        } else {
+            [&iterated.c[0], &iterated.c[1], &iterated.c[2]]
+        };
+        let z_alpha: Lanes;
+        let local_a: &Lanes = match cp.cca_localselect() {
+            AlphaLocalSelect::IteratedAlpha => &iterated.c[3],
+            AlphaLocalSelect::Color0 => &color0.c[3],
+            AlphaLocalSelect::IteratedZ => {
+                z_alpha = core::array::from_fn(|i| match profile.z_alpha {
+                    ZAlphaByte::High => z16[i] >> 8,
+                    ZAlphaByte::Low => z16[i] & 0xff,
+                });
+                &z_alpha
+            }
+            // UNVERIFIED: reserved on the SST-1; zero, as the reference path.
+            _ => zero,
+        };
+
+        // --- colour and alpha combine ---
+        let combined = combine_units(
+            cp,
+            other_rgb,
+            other_a,
+            local_rgb,
+            local_a,
+            &texel.c[3],
+            zero,
+        );
+        if alpha_test && test_combined {
+            kill_where(self, &mut alive, n, Kill::AlphaFunc, |i| {
+                !alpha_test::test(func, combined.c[3][i] as u8, reference)
+            });
+        }
+
+        // --- fog ---
+        let fogged_store: ColourLanes;
+        let fogged = if fog_mode.enable_fog() {
+            let mut f = combined;
+            let depth_bias = bias.map(|b| b as i16);
+            for i in 0..n {
+                if !alive[i] {
+                    continue;
+                }
+                let input = fog::FogInput {
+                    color: combined.at(i),
+                    alpha: iterated.c[3][i] as u8,
+                    z: z16[i] as u16,
+                    w: w_at(i),
+                    wfloat: wf[i] as u16,
+                    depth_bias,
+                };
+                let v =
+                    fog::apply_fog(fog_mode, st.fog_color, &self.fog_table, &input, profile.fog);
+                f.set(i, v);
+            }
+            fogged_store = f;
+            &fogged_store
+        } else {
+            &combined
+        };
+
+        // --- alpha blend ---
+        let blended: ColourLanes;
+        let out = if am.alpha_blend_enable() {
+            let ram = &self.fb.ram;
+            let read = |w: Words| -> (Lanes, [bool; LANES]) {
+                let mut v = [0; LANES];
+                let mut has = [false; LANES];
+                for (k, word) in ram[w.first..w.first + (w.hi - w.lo)].iter().enumerate() {
+                    v[w.lo + k] = *word as i32;
+                    has[w.lo + k] = true;
+                }
+                (v, has)
+            };
+            let (dst_rgb565, _) = read(dest_words);
+            let (dst_aux, has_aux) = read(aux_words);
+            let dither = &self.dither;
+            let dither_value: Lanes = core::array::from_fn(|i| {
+                let x = (at.x0 + i as i32) as u32;
+                dither.matrix_value(st.dither_matrix, x, at.prow as u32) as i32
+            });
+            let input = blend::BlendLanes {
+                src: &fogged.c,
+                prefog: &combined.c,
+                dst_rgb565: &dst_rgb565,
+                dst_aux: &dst_aux,
+                has_aux: &has_aux,
+                dither_value: &dither_value,
+            };
+            let mut b = ColourLanes::ZERO;
+            blend::alpha_blend_lanes(am, mode, &input, profile.blend, &mut b.c);
+            blended = b;
+            &blended
+        } else {
+            fogged
+        };
+
+        // --- write ---
+        if mode.rgb_buffer_mask() {
+            let w = dest_words;
+            let mut packed = [0u16; LANES];
+            self.dither.rgb565_row(
+                st.dither,
+                at.x0 as u32,
+                at.prow as u32,
+                [&out.c[0], &out.c[1], &out.c[2]],
+                &mut packed,
+            );
+            store_alive(&mut self.fb.ram, w, &alive, |i| packed[i]);
+        }
+        if aux_enabled(mode, profile.aux_write) {
+            let planes = mode.enable_alpha_planes();
+            let w = aux_words;
+            let value = if planes { &out.c[3] } else { &depth };
+            store_alive(&mut self.fb.ram, w, &alive, |i| value[i] as u16);
+        }
+        let out_count: u32 = alive[..n].iter().map(|a| *a as u32).sum();
+        self.stats.pixels_out += u64::from(out_count);
+    }
+
+    /// The reference path for one chunk ([`Fbi::shade`] per pixel), for the buffer
+    /// layouts whose lanes alias (see the module documentation).
+    #[inline(never)]
+    fn shade_chunk_per_pixel<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        at: &ChunkAt,
+        it: &Iterated,
+        stipple_state: &mut u32,
+        copy: Option<&crate::box86::StippleCopy>,
+        tex: &mut T,
+    ) {
+        let p = self.params;
+        let mut it = *it;
+        for i in 0..at.n {
+            let x = at.x0 + i as i32;
+            if let Some(c) = copy {
+                *stipple_state = c.at((x - at.span_start) as usize);
+            }
+            let r = self.shade_pixel::<M>(
+                st,
+                x,
+                at.prow,
+                at.scry,
+                &it,
+                Source::Triangle,
+                stipple_state,
+                || tex.texel(x - at.ax, at.dy, x, at.y),
+            );
+            self.count(r);
+            it.step_x(&p);
+        }
+    }
+}
+
+/// Write `value(i)` to the word of every live lane `i` that has one.
+#[inline(always)]
+fn store_alive(ram: &mut [u16], w: Words, alive: &[bool; LANES], value: impl Fn(usize) -> u16) {
+    let dst = &mut ram[w.first..w.first + (w.hi - w.lo)];
+    for (k, d) in dst.iter_mut().enumerate() {
+        let i = w.lo + k;
+        *d = if alive[i] { value(i) } else { *d };
+    }
+}
+
+/// Whether the aux buffer is written (see [`AuxWrite`]).
+#[inline(always)]
+pub(crate) fn aux_enabled(mode: FbzMode, aux_write: AuxWrite) -> bool {
+    match aux_write {
+        AuxWrite::MaskOnly => mode.aux_buffer_mask(),
+        AuxWrite::MaskAndDepthOrAlphaPlanes => {
+            mode.aux_buffer_mask() && (mode.enable_depthbuffer() || mode.enable_alpha_planes())
+        }
+    }
+}
+
+/// The colour and alpha combine units of [`crate::color_path::combine`] over every lane,
+/// their selections (spec 5.16) made once.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn combine_units(
+    cp: FbzColorPath,
+    other_rgb: [&Lanes; 3],
+    other_a: &Lanes,
+    local_rgb: [&Lanes; 3],
+    local_a: &Lanes,
+    texel_a: &Lanes,
+    zero: &Lanes,
+) -> ColourLanes {
+    let mut out = ColourLanes::ZERO;
+    // --- colour ---
+    let xor = if cp.cc_reverse_blend() { 0 } else { 0xff };
+    let invert = if cp.cc_invert_output() { 0xff } else { 0 };
+    for c in 0..3 {
+        let other = if cp.cc_zero_other() {
+            zero
+        } else {
+            other_rgb[c]
+        };
+        let sub = if cp.cc_sub_clocal() {
+            local_rgb[c]
+        } else {
+            zero
+        };
+        let factor = match cp.cc_mselect() {
+            CcMselect::CLocal => local_rgb[c],
+            CcMselect::AOther => other_a,
+            CcMselect::ALocal => local_a,
+            CcMselect::TextureAlpha => texel_a,
+            _ => zero,
+        };
+        // Bits 15:14 as one field: 1 adds c_local, 2 adds a_local, 3 adds nothing.
+        let add = match (cp.cc_add_clocal(), cp.cc_add_alocal()) {
+            (true, false) => local_rgb[c],
+            (false, true) => local_a,
+            _ => zero,
+        };
+        combine_channel(&mut out.c[c], other, sub, factor, add, xor, invert);
+    }
+
+    // --- alpha ---
+    let xor = if cp.cca_reverse_blend() { 0 } else { 0xff };
+    let invert = if cp.cca_invert_output() { 0xff } else { 0 };
+    let other = if cp.cca_zero_other() { zero } else { other_a };
+    let sub = if cp.cca_sub_clocal() { local_a } else { zero };
+    let factor = match cp.cca_mselect() {
+        // In the alpha unit both 1 and 3 select a_local.
+        CcMselect::CLocal | CcMselect::ALocal => local_a,
+        CcMselect::AOther => other_a,
+        CcMselect::TextureAlpha => texel_a,
+        _ => zero,
+    };
+    let add = if cp.cca_add_clocal() || cp.cca_add_alocal() {
+        local_a
+    } else {
+        zero
+    };
+    combine_channel(&mut out.c[3], other, sub, factor, add, xor, invert);
+    out
+}
