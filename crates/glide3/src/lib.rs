@@ -100,8 +100,7 @@ pub struct Glide {
     stats: Stats,
     swaps: u32,
     lfb_locks: [Option<u32>; 2],
-    strip_tail: Option<(Vec<f32>, Vec<f32>, bool)>,
-    fan_tail: Option<(Vec<f32>, Vec<f32>)>,
+    list_tail: draw::ListTail,
     error_cb: Option<ErrorCallback>,
     last_error: Option<String>,
     /// 3dfx's `gc->nopCMD`: `grSstIsBusy` has written a `nopCMD` not yet seen idle.
@@ -140,8 +139,7 @@ impl Glide {
             stats: Stats::default(),
             swaps: 0,
             lfb_locks: [None; 2],
-            strip_tail: None,
-            fan_tail: None,
+            list_tail: draw::ListTail::default(),
             nop_cmd_sent: false,
             cc_delta0: false,
             error_cb: None,
@@ -988,6 +986,13 @@ impl Glide {
         ) {
             return;
         }
+        // 3dfx's grDrawVertexArrayContiguous starts a new fan for
+        // GR_TRIANGLE_FAN_CONTINUE (only grDrawVertexArray continues one).
+        // Source: sezero/glide distrip.c grDrawVertexArrayContiguous.
+        let mode = match mode {
+            GR_TRIANGLE_FAN_CONTINUE => GR_TRIANGLE_FAN,
+            m => m,
+        };
         self.draw_list(mode, count, vertex);
     }
 
