@@ -168,6 +168,19 @@ impl Recording {
 /// Words in an LFB shadow: 1024 rows of 4096 bytes.
 const LFB_WORDS: usize = 1024 * 1024;
 
+/// What a write lock's shadow holds where the program has not stored: a 16-bit
+/// pixel slot (16-bit formats, two a word) or a 32-bit one. Unlock sends every slot
+/// that differs from it, so every pixel the program stores reaches the board, the
+/// value the buffer already holds included (on the SST-1 each store is a bus write,
+/// and a pipelined write blends, depth-tests and counts). INACCURATE: a store of
+/// exactly this value is taken for no store; the values are chosen to be unlikely
+/// (no grey, no primary, no common chroma key, alpha 0x5a in 32-bit formats). The
+/// stores also arrive once each, in address order, at unlock, where the hardware sees
+/// each one as it is made.
+const UNWRITTEN16: u16 = 0x5aa5;
+/// See [`UNWRITTEN16`].
+const UNWRITTEN32: u32 = 0x5aa5_5aa5;
+
 /// Host-side stand-in for the mapped LFB while a lock is held. The two shadows (read
 /// and write lock) are allocated once per process and never freed, so the pointer
 /// `grLfbLock` hands out stays valid whatever the program does after (a refused unlock,
@@ -175,15 +188,15 @@ const LFB_WORDS: usize = 1024 * 1024;
 struct LfbShadow {
     /// What the program sees through `GrLfbInfo_t::lfbPtr`.
     words: Box<[u32]>,
-    /// The words as the lock filled them (write locks send what changed).
-    initial: Box<[u32]>,
+    /// The lock's row stride in bytes: 2048 (16-bit slots) or 4096 (32-bit).
+    stride: u32,
 }
 
 impl LfbShadow {
     fn new() -> Self {
         Self {
             words: vec![0; LFB_WORDS].into_boxed_slice(),
-            initial: vec![0; LFB_WORDS].into_boxed_slice(),
+            stride: 2048,
         }
     }
 }
@@ -1207,8 +1220,8 @@ pub struct GrLfbInfo {
 }
 
 /// `grLfbLock`: the pointer is a host shadow; a read lock fills it from the board,
-/// a write lock starts as the locked buffer and sends the words that changed when
-/// unlocked (see `fill_from_buffer`).
+/// a write lock sends what the program stored into it when unlocked (see
+/// [`UNWRITTEN16`]).
 #[no_mangle]
 pub unsafe extern "C" fn grLfbLock(
     ty: u32,
@@ -1243,22 +1256,18 @@ pub unsafe extern "C" fn grLfbLock(
             };
             let write = slot == 1;
             let shadow = p.lfb[slot].get_or_insert_with(LfbShadow::new);
-            shadow.words.fill(0);
+            shadow.stride = li.stride_in_bytes;
             if write {
-                // What the locked buffer holds now, in the lock's layout, read from the
-                // board without a bus access: unlock sends the words the program
-                // changed from it. A store of the value a word already holds is not
-                // sent (UNVERIFIED: 3dfx's library writes the aperture directly, so the
-                // hardware sees every store; only pipelined LFB writes, which blend or
-                // depth-test, can tell).
-                fill_from_buffer(
-                    &mut shadow.words,
-                    &c.board,
-                    buffer as u32,
-                    li.stride_in_bytes,
-                );
-                shadow.initial.copy_from_slice(&shadow.words);
+                // Every slot starts as "not stored": unlock sends the slots the
+                // program stored into, whatever it stored (see UNWRITTEN16). Reading
+                // through a write lock sees these values, not the buffer.
+                shadow.words.fill(if li.stride_in_bytes == 2048 {
+                    u32::from(UNWRITTEN16) * 0x1_0001
+                } else {
+                    UNWRITTEN32
+                });
             } else {
+                shadow.words.fill(0);
                 // Fill what the program can see from the board (16-bit layout).
                 let (w, h) = c.glide.screen_size();
                 let (w, h) = glide::lfb::clip_to_window(0, 0, w.div_ceil(2), h);
@@ -1280,37 +1289,7 @@ pub unsafe extern "C" fn grLfbLock(
     })
 }
 
-/// Fills a write lock's shadow with what `buffer` (`GR_BUFFER_*`) holds, in the layout
-/// of the lock's stride: two 16-bit pixels a word (2048 bytes a row), or one pixel a
-/// word (4096 bytes a row) as 888 with the high bits of each 565 channel replicated
-/// and alpha 0xff.
-fn fill_from_buffer(words: &mut [u32], board: &SharedBoard, buffer: u32, stride: u32) {
-    let kind = match buffer {
-        glide::consts::GR_BUFFER_FRONTBUFFER => BufferKind::Front,
-        glide::consts::GR_BUFFER_BACKBUFFER => BufferKind::Back,
-        _ => BufferKind::Aux,
-    };
-    let board = board.0.borrow();
-    let (dw, dh) = board.display_size();
-    let (w, h) = glide::lfb::clip_to_window(0, 0, dw, dh);
-    let px = board.dump_buffer(kind);
-    for y in 0..h as usize {
-        for x in 0..w as usize {
-            let Some(&p) = px.get(y * dw as usize + x) else {
-                return;
-            };
-            if stride == 2048 {
-                let word = &mut words[y * 512 + x / 2];
-                *word |= u32::from(p) << (16 * (x & 1));
-            } else {
-                let [r, g, b] = sst1_trace::rgb565_to_rgb8(p).map(u32::from);
-                words[y * 1024 + x] = 0xff00_0000 | r << 16 | g << 8 | b;
-            }
-        }
-    }
-}
-
-/// `grLfbUnlock`: a write lock's changed words reach the board first. An unlock that
+/// `grLfbUnlock`: what the program stored through a write lock reaches the board first. An unlock that
 /// does not match the lock fails and leaves the lock (and its pointer) as they were.
 #[no_mangle]
 pub extern "C" fn grLfbUnlock(ty: u32, buffer: i32) -> FxBool {
@@ -1321,15 +1300,33 @@ pub extern "C" fn grLfbUnlock(ty: u32, buffer: i32) -> FxBool {
             };
             let holds = c.glide.lfb_locked_buffer(ty) == Some(buffer as u32);
             if let (true, Some(1), Some(shadow)) = (holds, glide::lfb::lock_slot(ty), &p.lfb[1]) {
-                for (i, (&now, &was)) in shadow.words.iter().zip(&shadow.initial[..]).enumerate() {
-                    if now != was {
-                        c.glide.lfb_write32((i * 4) as u32, now);
-                    }
-                }
+                send_stored(&mut c.glide, shadow);
             }
             FxBool::from(c.glide.lfb_unlock(ty, buffer as u32))
         })
     })
+}
+
+/// Sends what the program stored into a write lock's shadow: each 32-bit slot, or each
+/// 16-bit one (a 32-bit write when both halves of a word were stored, else a 16-bit
+/// write of the stored half), that differs from the "not stored" value.
+fn send_stored(glide: &mut Glide, shadow: &LfbShadow) {
+    for (i, &w) in shadow.words.iter().enumerate() {
+        let offset = (i * 4) as u32;
+        if shadow.stride != 2048 {
+            if w != UNWRITTEN32 {
+                glide.lfb_write32(offset, w);
+            }
+            continue;
+        }
+        let (lo, hi) = (w as u16, (w >> 16) as u16);
+        match (lo != UNWRITTEN16, hi != UNWRITTEN16) {
+            (true, true) => glide.lfb_write32(offset, w),
+            (true, false) => glide.lfb_write16(offset, lo),
+            (false, true) => glide.lfb_write16(offset + 2, hi),
+            (false, false) => {}
+        }
+    }
 }
 
 /// Bytes of caller memory a region of `height` rows `stride` apart, `row_bytes` used in

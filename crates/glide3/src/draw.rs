@@ -53,6 +53,23 @@ const PARGB_B: i32 = 0;
 const DPDX: u32 = 0x20;
 const DPDY: u32 = 0x40;
 
+/// The vertices a strip or fan keeps for `GR_TRIANGLE_STRIP_CONTINUE` and
+/// `GR_TRIANGLE_FAN_CONTINUE`: 3dfx's `gc->vert1`, `gc->vert2`, `gc->vert2_status` and
+/// `gc->flip`, shared by strips and fans and kept across every other call
+/// (Source: sezero/glide gstrip.c _grDrawVertexList, _grDrawVertexListContinue).
+/// 3dfx keeps only the position and the parameters of the data list in use; we keep
+/// the whole vertex, which the setup reads the same way.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ListTail {
+    /// A strip's second-newest vertex, or a fan's centre. Before any list, a vertex of
+    /// zeros (3dfx's context starts zeroed); `fetch` reads an empty one as zeros.
+    pub v1: Vec<f32>,
+    /// The newest vertex; `None` when the last list had fewer than two.
+    pub v2: Option<Vec<f32>>,
+    /// Whether the next strip triangle is turned.
+    pub flip: bool,
+}
+
 /// Parameters an iterated triangle needs (3dfx's `STATE_REQUIRES_*`).
 mod req {
     pub const IT_DRGB: u32 = 1 << 0;
@@ -765,63 +782,184 @@ impl crate::Glide {
                     prev = next;
                 }
             }
-            GR_TRIANGLE_STRIP | GR_TRIANGLE_STRIP_CONTINUE => {
-                // The strip's vertices: the last two of the previous strip when
-                // continuing one, then the `n` given; `window` holds the newest three.
-                let tail = self.strip_tail.take();
-                let mut window: Vec<Cow<'v, [f32]>> = Vec::with_capacity(3);
-                let mut flip = false;
-                if mode == GR_TRIANGLE_STRIP_CONTINUE {
-                    if let Some((t0, t1, f)) = tail {
-                        window.push(Cow::Owned(t0));
-                        window.push(Cow::Owned(t1));
-                        flip = f;
-                    }
-                }
-                self.flush_state();
-                for i in 0..n {
-                    window.push(at(i));
-                    if let [a, b, c] = window.as_slice() {
-                        if flip {
-                            self.triangle(b, a, c);
-                        } else {
-                            self.triangle(a, b, c);
-                        }
-                        flip = !flip;
-                        window.remove(0);
-                    }
-                }
-                if let [a, b] = window.as_slice() {
-                    self.strip_tail = Some((a.to_vec(), b.to_vec(), flip));
-                }
-            }
-            GR_TRIANGLE_FAN | GR_POLYGON | GR_TRIANGLE_FAN_CONTINUE => {
-                // The fan's centre and newest vertex: the previous fan's when continuing
-                // one, else the first two given.
-                let tail = self.fan_tail.take();
-                let (mut center, mut last) = match tail {
-                    Some((c, l)) if mode == GR_TRIANGLE_FAN_CONTINUE => {
-                        (Some(Cow::Owned(c)), Some(Cow::Owned(l)))
-                    }
-                    _ => (None, None),
-                };
-                self.flush_state();
-                for i in 0..n {
-                    let next = at(i);
-                    if center.is_none() {
-                        center = Some(next);
-                        continue;
-                    }
-                    if let (Some(c), Some(l)) = (&center, &last) {
-                        self.triangle(c, l, &next);
-                    }
-                    last = Some(next);
-                }
-                if let (Some(c), Some(l)) = (center, last) {
-                    self.fan_tail = Some((c.into_owned(), l.into_owned()));
-                }
-            }
+            GR_TRIANGLE_STRIP => self.new_strip(n, at),
+            GR_TRIANGLE_FAN | GR_POLYGON => self.new_fan(n, at),
+            GR_TRIANGLE_STRIP_CONTINUE => self.continue_strip(n, at),
+            GR_TRIANGLE_FAN_CONTINUE => self.continue_fan(n, at),
             _ => {}
+        }
+    }
+
+    /// `_grDrawVertexList` for a strip: the triangles of `n` vertices, every other one
+    /// turned; the last two vertices (or the only one) and the turn are kept for a
+    /// `GR_TRIANGLE_STRIP_CONTINUE`. Source: sezero/glide gstrip.c _grDrawVertexList.
+    fn new_strip<'v>(&mut self, n: usize, mut at: impl FnMut(usize) -> Cow<'v, [f32]>) {
+        self.list_tail.v2 = None;
+        self.flush_state();
+        let mut window: Vec<Cow<'v, [f32]>> = Vec::with_capacity(3);
+        let mut flip = false;
+        for i in 0..n {
+            window.push(at(i));
+            if let [a, b, c] = window.as_slice() {
+                if flip {
+                    self.triangle(b, a, c);
+                } else {
+                    self.triangle(a, b, c);
+                }
+                flip = !flip;
+                window.remove(0);
+            }
+        }
+        self.list_tail.flip = flip;
+        // No vertex leaves the kept first vertex as it was.
+        let mut kept = window.into_iter();
+        if let Some(v1) = kept.next() {
+            self.list_tail.v1 = v1.into_owned();
+        }
+        self.list_tail.v2 = kept.next().map(Cow::into_owned);
+    }
+
+    /// `_grDrawVertexList` for a fan (and a polygon): the triangles around the first
+    /// vertex; the centre and the newest vertex are kept for a
+    /// `GR_TRIANGLE_FAN_CONTINUE`. Source: sezero/glide gstrip.c _grDrawVertexList.
+    fn new_fan<'v>(&mut self, n: usize, mut at: impl FnMut(usize) -> Cow<'v, [f32]>) {
+        self.list_tail.v2 = None;
+        self.flush_state();
+        // UNVERIFIED: with no vertex 3dfx's code keeps the pointer array's first entry
+        // (reading past the array); we keep the centre as it was.
+        if n == 0 {
+            return;
+        }
+        let center = at(0);
+        let mut last = (n >= 2).then(|| at(1));
+        for i in 2..n {
+            let next = at(i);
+            if let Some(l) = &last {
+                self.triangle(&center, l, &next);
+            }
+            last = Some(next);
+        }
+        self.list_tail.v1 = center.into_owned();
+        self.list_tail.v2 = last.map(Cow::into_owned);
+    }
+
+    /// `_grDrawVertexListContinue` for a strip: the strip goes on from the two kept
+    /// vertices (a list of one vertex kept only one: the first vertex given becomes
+    /// the second). Source: sezero/glide gstrip.c _grDrawVertexListContinue, with its
+    /// quirks: the first two triangles go through the mixed-layout setup, which counts
+    /// each drawn triangle twice in `GR_STATS_TRIANGLES_OUT`; and when the call draws
+    /// three triangles or more the kept turn is not updated, so the next continuation
+    /// starts with the turn this one started with.
+    fn continue_strip<'v>(&mut self, n: usize, mut at: impl FnMut(usize) -> Cow<'v, [f32]>) {
+        let mut flip = self.list_tail.flip;
+        let mut i = 0;
+        let v2 = match self.list_tail.v2.take() {
+            Some(v2) => v2,
+            // UNVERIFIED: 3dfx's code reads a vertex even when none is given; we keep
+            // the strip as it was.
+            None if n == 0 => return,
+            None => {
+                i = 1;
+                at(0).into_owned()
+            }
+        };
+        if i == n {
+            self.list_tail.v2 = Some(v2);
+            return;
+        }
+        let v1 = std::mem::take(&mut self.list_tail.v1);
+        let c = at(i);
+        if flip {
+            self.mixed_triangle(&v2, &v1, &c, false);
+        } else {
+            self.mixed_triangle(&v1, &v2, &c, false);
+        }
+        flip = !flip;
+        if i + 1 == n {
+            self.list_tail.v1 = v2;
+            self.list_tail.v2 = Some(c.into_owned());
+            self.list_tail.flip = flip;
+            return;
+        }
+        let d = at(i + 1);
+        if flip {
+            self.mixed_triangle(&c, &v2, &d, false);
+        } else {
+            self.mixed_triangle(&v2, &c, &d, false);
+        }
+        flip = !flip;
+        if i + 2 == n {
+            self.list_tail.v1 = c.into_owned();
+            self.list_tail.v2 = Some(d.into_owned());
+            self.list_tail.flip = flip;
+            return;
+        }
+        let mut window = vec![c, d];
+        for k in i + 2..n {
+            window.push(at(k));
+            if let [a, b, c] = window.as_slice() {
+                if flip {
+                    self.triangle(b, a, c);
+                } else {
+                    self.triangle(a, b, c);
+                }
+            }
+            flip = !flip;
+            window.remove(0);
+        }
+        let mut kept = window.into_iter();
+        if let (Some(a), Some(b)) = (kept.next(), kept.next()) {
+            self.list_tail.v1 = a.into_owned();
+            self.list_tail.v2 = Some(b.into_owned());
+        }
+    }
+
+    /// `_grDrawVertexListContinue` for a fan: the fan goes on around the kept centre
+    /// from the kept newest vertex (a list of one vertex kept only the centre: the
+    /// first vertex given becomes the newest). Source: sezero/glide gstrip.c
+    /// _grDrawVertexListContinue, with its quirks: every triangle goes through the
+    /// mixed-layout setup (counted twice in `GR_STATS_TRIANGLES_OUT`), and the first
+    /// one through its window-coordinate version whatever the coordinate space.
+    fn continue_fan<'v>(&mut self, n: usize, mut at: impl FnMut(usize) -> Cow<'v, [f32]>) {
+        let mut i = 0;
+        let v2 = match self.list_tail.v2.take() {
+            Some(v2) => v2,
+            // UNVERIFIED: as for strips, no vertex given keeps the fan as it was.
+            None if n == 0 => return,
+            None => {
+                i = 1;
+                at(0).into_owned()
+            }
+        };
+        if i == n {
+            self.list_tail.v2 = Some(v2);
+            return;
+        }
+        let center = std::mem::take(&mut self.list_tail.v1);
+        let mut last = at(i);
+        self.mixed_triangle(&center, &v2, &last, true);
+        for k in i + 1..n {
+            let next = at(k);
+            self.mixed_triangle(&center, &last, &next, false);
+            last = next;
+        }
+        self.list_tail.v1 = center;
+        self.list_tail.v2 = Some(last.into_owned());
+    }
+
+    /// A triangle through 3dfx's `_trisetup_mixed_datalist` (or its clip-coordinate
+    /// `_vp_` version unless `window`): the same setup as `grDrawTriangle`, but a
+    /// drawn triangle is counted twice in `GR_STATS_TRIANGLES_OUT`.
+    /// Source: sezero/glide gstrip.c _trisetup_mixed_datalist (`trisDrawn++` twice).
+    fn mixed_triangle(&mut self, a: &[f32], b: &[f32], c: &[f32], window: bool) {
+        self.stats.triangles_in += 1;
+        let drawn = if window || self.st.coordinate_space == GR_WINDOW_COORDS {
+            self.trisetup(a, b, c)
+        } else {
+            self.vp_triangle(a, b, c)
+        };
+        if drawn == 1 {
+            self.stats.triangles_drawn += 1;
         }
     }
 

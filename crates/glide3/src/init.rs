@@ -192,7 +192,8 @@ pub(crate) struct InitState {
     fbi_init: [u32; 5],
     tmu_init0: [u32; 3],
     tmu_init1: [u32; 3],
-    /// The graphics clock is programmed only by the first `grSstWinOpen`.
+    /// The graphics clock is programmed only by the first `grSstWinOpen` after
+    /// `grGlideInit` or a `grSstWinClose` (which sets it to 30 MHz).
     grx_clk_done: bool,
     /// The video clock is enabled only by the first gamma load.
     gamma_called: bool,
@@ -257,8 +258,23 @@ impl Init<'_> {
 
     /// `grGlideInit` for one board: map, reset, detect and size it.
     pub(crate) fn power_on(&mut self) {
-        // Enable memory decoding (PCI command register).
+        // Enable memory decoding (PCI command register): only the first mapping of
+        // the board does (Source: sezero/glide sst1init.c sst1InitMapBoard).
         self.hw.pci(PCI_COMMAND, 2);
+        self.registers();
+    }
+
+    /// `sst1InitRegisters`: reset the graphics and video units, reload every init
+    /// register, detect the DAC, size the memories and zero the rendering registers.
+    /// `grGlideInit` runs it, and so does `grSstWinOpen` after a `grSstWinClose`
+    /// (Source: sezero/glide gsst.c grSstWinOpen, `closedP`; init.c initMapBoard).
+    /// The resets read the init registers back, so they start from what the last
+    /// session left in them.
+    pub(crate) fn registers(&mut self) {
+        // The TMU init values are reloaded from their defaults each time
+        // (Source: sezero/glide sst1init.c sst1InitRegisters).
+        self.st.tmu_init0 = [TREXINIT0_DEFAULT; 3];
+        self.st.tmu_init1 = [TREXINIT1_DEFAULT; 3];
         self.hw.pci(PCI_VCLK_DISABLE, 0);
         self.hw.pci(PCI_INIT_ENABLE, INITWR_EN);
         self.hw.pci(PCI_BUS_SNOOP0, 0);
@@ -340,6 +356,31 @@ impl Init<'_> {
         ] {
             self.hw.w(a, 0);
         }
+    }
+
+    /// `grSstWinClose` on an SST-1: idle the engine, then `sst1InitShutdown`: video
+    /// in reset and blanked, DRAM refresh off, a graphics-engine and PCI FIFO reset,
+    /// the monitor back to the VGA, the graphics clock down to 30 MHz, idle again.
+    /// Source: sezero/glide gsst.c grSstWinClose (`initIdle`, `initRestoreVideo`)
+    /// and sst1init.c sst1InitShutdown, sst1InitVgaPassCtrl; checked write for write
+    /// against glide-sdk test30 (tests/reopen_trace.rs).
+    pub(crate) fn close(&mut self) {
+        self.idle();
+        // sst1InitShutdown
+        self.idle();
+        self.or(Fi::I1, VIDEO_RESET | VIDEO_BLANK_EN);
+        self.and_not(Fi::I2, EN_DRAM_REFRESH);
+        self.or(Fi::I0, GRX_RESET | PCI_FIFO_RESET);
+        self.and_not(Fi::I0, PCI_FIFO_RESET);
+        self.and_not(Fi::I0, GRX_RESET);
+        // The VGA drives the monitor: the pass-through bit takes the board's "enable"
+        // sense (clear on the traced board; see `video`), and the SST-1 output blanks.
+        self.and_not(Fi::I0, EN_VGA_PASSTHRU);
+        self.or(Fi::I1, VIDEO_BLANK_EN);
+        self.set_grx_clk(30.0);
+        // The next grSstWinOpen programs the graphics clock again.
+        self.st.grx_clk_done = false;
+        self.idle();
     }
 
     /// `sst1InitRenderingRegisters`: zero every rendering register, then idle.

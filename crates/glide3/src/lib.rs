@@ -94,11 +94,13 @@ pub struct Glide {
     param_index: u32,
     data_list: Vec<draw::Entry>,
     open: bool,
+    /// 3dfx's `gc->closedP`: `grSstWinClose` shut the board down, so the next
+    /// `grSstWinOpen` re-initialises it first.
+    closed: bool,
     stats: Stats,
     swaps: u32,
     lfb_locks: [Option<u32>; 2],
-    strip_tail: Option<(Vec<f32>, Vec<f32>, bool)>,
-    fan_tail: Option<(Vec<f32>, Vec<f32>)>,
+    list_tail: draw::ListTail,
     error_cb: Option<ErrorCallback>,
     last_error: Option<String>,
     /// 3dfx's `gc->nopCMD`: `grSstIsBusy` has written a `nopCMD` not yet seen idle.
@@ -133,11 +135,11 @@ impl Glide {
             param_index: 0,
             data_list: Vec::new(),
             open: false,
+            closed: false,
             stats: Stats::default(),
             swaps: 0,
             lfb_locks: [None; 2],
-            strip_tail: None,
-            fan_tail: None,
+            list_tail: draw::ListTail::default(),
             nop_cmd_sent: false,
             cc_delta0: false,
             error_cb: None,
@@ -297,6 +299,18 @@ impl Glide {
             self.report("grSstWinOpen: gc opened twice!".into(), false);
             return false;
         }
+        // After grSstWinClose the board is mapped and initialised again, as
+        // grGlideInit did, before the arguments are looked at (Source: sezero/glide
+        // gsst.c grSstWinOpen, `closedP`; init.c initMapBoard).
+        if self.closed {
+            Init {
+                hw: &mut self.hw,
+                st: &mut self.init,
+                board: &self.board,
+            }
+            .registers();
+            self.closed = false;
+        }
         let Some(mode) = video::find_mode(resolution, refresh) else {
             self.report(
                 format!(
@@ -420,10 +434,22 @@ impl Glide {
         true
     }
 
-    /// `grSstWinClose`.
+    /// `grSstWinClose`: idle and shut the board down (video reset and blanked, a
+    /// graphics-engine reset, the monitor back to the VGA, the graphics clock at
+    /// 30 MHz); the next `grSstWinOpen` re-initialises it. False (and no writes) when
+    /// no window is open. Source: sezero/glide gsst.c grSstWinClose.
     pub fn win_close(&mut self) -> bool {
         let was = self.open;
-        self.open = false;
+        if was {
+            Init {
+                hw: &mut self.hw,
+                st: &mut self.init,
+                board: &self.board,
+            }
+            .close();
+            self.open = false;
+            self.closed = true;
+        }
         was
     }
 
@@ -960,6 +986,13 @@ impl Glide {
         ) {
             return;
         }
+        // 3dfx's grDrawVertexArrayContiguous starts a new fan for
+        // GR_TRIANGLE_FAN_CONTINUE (only grDrawVertexArray continues one).
+        // Source: sezero/glide distrip.c grDrawVertexArrayContiguous.
+        let mode = match mode {
+            GR_TRIANGLE_FAN_CONTINUE => GR_TRIANGLE_FAN,
+            m => m,
+        };
         self.draw_list(mode, count, vertex);
     }
 
