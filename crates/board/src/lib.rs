@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 pub use bus::aperture_offset;
 pub use diagnostics::{Diagnostic, Diagnostics};
 pub use model::Model;
-pub use pixelfx::{PixelProfile, Stats};
+pub use pixelfx::{PathCounts, PixelProfile, Stats};
 pub use reference::{vote, Reference};
 pub use texelfx::{TexelProfile, Tmu};
 pub use timing::{FrameTime, Timing};
@@ -182,6 +182,11 @@ impl Board {
     /// The statistics counters and command counts.
     pub fn stats(&self) -> Stats {
         self.fbi.stats
+    }
+
+    /// How many triangle pixels each pixel path shaded (not a hardware counter).
+    pub fn path_counts(&self) -> PathCounts {
+        self.fbi.path_counts
     }
 
     /// What the board met that it does not model or that a driver should not do.

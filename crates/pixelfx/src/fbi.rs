@@ -51,6 +51,22 @@ pub struct Fbi {
     pub(crate) dither: Dither,
     /// Force the reference path (the pipeline pixel by pixel); see [`Fbi::set_generic_path`].
     pub(crate) generic_path: bool,
+    /// Which path shaded the triangles' pixels.
+    pub path_counts: PathCounts,
+}
+
+/// How many triangle pixels (inside the clip rectangle) each path shaded: what
+/// `voodoo replay --stats` reports, so that a state the fast path does not cover would
+/// show. Not a hardware counter.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct PathCounts {
+    /// By the span kernels ([`crate::span`]).
+    pub span_kernels: u64,
+    /// Pixel by pixel because colour and aux words of different lanes alias (a buffer
+    /// layout no driver sets; [`crate::span`]).
+    pub aliased_layout: u64,
+    /// Pixel by pixel because the reference path was forced ([`Fbi::set_generic_path`]).
+    pub reference: u64,
 }
 
 impl Fbi {
@@ -66,6 +82,7 @@ impl Fbi {
             dither: Dither::new(profile.dither_2x2),
             profile,
             generic_path: false,
+            path_counts: PathCounts::default(),
         }
     }
 

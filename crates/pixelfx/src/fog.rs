@@ -23,6 +23,8 @@ use serde::{Deserialize, Serialize};
 use sst1_fog::FogTable;
 use sst1_regs::{FogMode, FogZa, Rgba};
 
+use crate::span::{Lanes, LANES};
+
 /// What happens to the scaled fog difference `(F * (Afog + 1)) >> 8` before it is added
 /// back to the colour.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -216,6 +218,92 @@ pub fn apply_fog(
         g: out[1].clamp(0, 255) as u8,
         b: out[2].clamp(0, 255) as u8,
         a: c.a,
+    }
+}
+
+/// [`apply_fog`]'s per-pixel inputs for every lane of a chunk of a span ([`crate::span`]).
+pub struct FogLanes<'a> {
+    /// The colour-combine output, R, G, B, A.
+    pub color: &'a [Lanes; 4],
+    /// The clamped iterated alpha.
+    pub alpha: &'a Lanes,
+    /// The clamped 16-bit iterated Z.
+    pub z: &'a Lanes,
+    /// The iterated W of lane `i`.
+    pub w: &'a dyn Fn(usize) -> i64,
+    /// The 16-bit floating-point W.
+    pub wfloat: &'a Lanes,
+    /// The depth bias (`zaColor`), when enabled.
+    pub depth_bias: Option<i16>,
+}
+
+/// [`apply_fog`] (with fog enabled) for every lane at once: the same arithmetic, its
+/// choices made once, into `out` (R, G, B, A).
+#[inline(always)]
+pub fn apply_fog_lanes(
+    mode: FogMode,
+    fog_color: Rgba,
+    table: &FogTable,
+    input: &FogLanes<'_>,
+    profile: FogProfile,
+    out: &mut [Lanes; 4],
+) {
+    use core::array::from_fn;
+    let cin = input.color;
+    let fog = [fog_color.r as i32, fog_color.g as i32, fog_color.b as i32];
+    let add_back = !mode.fog_mult();
+    out[3] = cin[3];
+    if mode.fog_constant() {
+        // Constant fog bypasses the multiplier (spec 5.17: bit 5 overrides bits 4:3).
+        let add = add_back || profile.constant_mult == FogConstantMult::AddToColor;
+        for c in 0..3 {
+            let (f, base) = (fog[c], &cin[c]);
+            out[c] = if add {
+                from_fn(|i| (base[i] + f).clamp(0, 255))
+            } else {
+                [f.clamp(0, 255); LANES]
+            };
+        }
+        return;
+    }
+    // Afog + 1 per lane (see `fog_alpha`).
+    let factor: Lanes = match mode.fog_za() {
+        FogZa::FogTable => {
+            let biased = profile.table_depth == FogTableDepth::BiasedWfloat;
+            from_fn(|i| {
+                let depth = match (biased, input.depth_bias) {
+                    (true, Some(bias)) => (input.wfloat[i] + bias as i32).clamp(0, 0xffff) as u16,
+                    _ => input.wfloat[i] as u16,
+                };
+                table.blend(depth) as i32 + 1
+            })
+        }
+        FogZa::IteratedAlpha => match profile.iterated_alpha {
+            FogIteratedAlpha::Clamped => from_fn(|i| input.alpha[i] + 1),
+            FogIteratedAlpha::MameLowByte => [1; LANES],
+        },
+        FogZa::IteratedZ => from_fn(|i| (input.z[i] >> 8) + 1),
+        FogZa::IteratedZAndAlpha => match profile.both_sources {
+            FogBothSources::IteratedW => from_fn(|i| pseudo_clamped_w((input.w)(i)) + 1),
+            FogBothSources::IteratedZ => from_fn(|i| (input.z[i] >> 8) + 1),
+        },
+    };
+    let clamp_difference = profile.difference == FogDifference::ClampedToByte;
+    for c in 0..3 {
+        let fc = if mode.fog_add() { 0 } else { fog[c] };
+        let base = &cin[c];
+        out[c] = from_fn(|i| {
+            let f = if add_back { fc - base[i] } else { fc };
+            // Arithmetic shift: floor, as in all three references.
+            let scaled = (f * factor[i]) >> 8;
+            let scaled = if clamp_difference {
+                scaled.clamp(0, 255)
+            } else {
+                scaled
+            };
+            let v = if add_back { base[i] + scaled } else { scaled };
+            v.clamp(0, 255)
+        });
     }
 }
 

@@ -25,7 +25,7 @@ pub mod span;
 pub mod stats;
 pub mod stipple;
 
-pub use fbi::{Command, Fbi};
+pub use fbi::{Command, Fbi, PathCounts};
 pub use model::{PixelModel, RuntimeProfile};
 pub use profile::PixelProfile;
 pub use raster::{NoTexture, TexelSource};

@@ -193,6 +193,7 @@ impl Fbi {
                 }
                 continue;
             }
+            self.path_counts.reference += (stop - start) as u64;
             let mut it = Iterated::at(&params, start - ax, dy);
             for x in start..stop {
                 if let Some(c) = &copy {

@@ -129,24 +129,6 @@ impl ColourLanes {
             ],
         }
     }
-
-    #[inline(always)]
-    fn set(&mut self, i: usize, v: Rgba) {
-        self.c[0][i] = v.r as i32;
-        self.c[1][i] = v.g as i32;
-        self.c[2][i] = v.b as i32;
-        self.c[3][i] = v.a as i32;
-    }
-
-    #[inline(always)]
-    fn at(&self, i: usize) -> Rgba {
-        Rgba {
-            r: self.c[0][i] as u8,
-            g: self.c[1][i] as u8,
-            b: self.c[2][i] as u8,
-            a: self.c[3][i] as u8,
-        }
-    }
 }
 
 /// What every chunk of a triangle reads and no stage changes: the constant colours
@@ -236,9 +218,11 @@ impl Fbi {
             .aux
             .map_or(Words::NONE, |a| Words::of(self, a, at.x0, n, at.scry));
         if dest_words.crosses(&aux_words) {
+            self.path_counts.aliased_layout += n as u64;
             self.shade_chunk_per_pixel::<M, T>(st, at, it, stipple_state, copy, tex);
             return;
         }
+        self.path_counts.span_kernels += n as u64;
         let profile = M::pixel(&self.profile());
         let cp = st.color_path;
         let am = st.alpha_mode;
@@ -421,24 +405,23 @@ impl Fbi {
         // --- fog ---
         let fogged_store: ColourLanes;
         let fogged = if fog_mode.enable_fog() {
-            let mut f = combined;
-            let depth_bias = bias.map(|b| b as i16);
-            for i in 0..n {
-                if !alive[i] {
-                    continue;
-                }
-                let input = fog::FogInput {
-                    color: combined.at(i),
-                    alpha: iterated.c[3][i] as u8,
-                    z: z16[i] as u16,
-                    w: w_at(i),
-                    wfloat: wf[i] as u16,
-                    depth_bias,
-                };
-                let v =
-                    fog::apply_fog(fog_mode, st.fog_color, &self.fog_table, &input, profile.fog);
-                f.set(i, v);
-            }
+            let input = fog::FogLanes {
+                color: &combined.c,
+                alpha: &iterated.c[3],
+                z: &z16,
+                w: &w_at,
+                wfloat: &wf,
+                depth_bias: bias.map(|b| b as i16),
+            };
+            let mut f = ColourLanes::ZERO;
+            fog::apply_fog_lanes(
+                fog_mode,
+                st.fog_color,
+                &self.fog_table,
+                &input,
+                profile.fog,
+                &mut f.c,
+            );
             fogged_store = f;
             &fogged_store
         } else {
@@ -448,18 +431,8 @@ impl Fbi {
         // --- alpha blend ---
         let blended: ColourLanes;
         let out = if am.alpha_blend_enable() {
-            let ram = &self.fb.ram;
-            let read = |w: Words| -> (Lanes, [bool; LANES]) {
-                let mut v = [0; LANES];
-                let mut has = [false; LANES];
-                for (k, word) in ram[w.first..w.first + (w.hi - w.lo)].iter().enumerate() {
-                    v[w.lo + k] = *word as i32;
-                    has[w.lo + k] = true;
-                }
-                (v, has)
-            };
-            let (dst_rgb565, _) = read(dest_words);
-            let (dst_aux, has_aux) = read(aux_words);
+            let (dst_rgb565, _) = load_words(&self.fb.ram, dest_words);
+            let (dst_aux, has_aux) = load_words(&self.fb.ram, aux_words);
             let dither = &self.dither;
             let dither_value: Lanes = core::array::from_fn(|i| {
                 let x = (at.x0 + i as i32) as u32;
@@ -492,13 +465,14 @@ impl Fbi {
                 [&out.c[0], &out.c[1], &out.c[2]],
                 &mut packed,
             );
-            store_alive(&mut self.fb.ram, w, &alive, |i| packed[i]);
+            store_alive(&mut self.fb.ram, w, &alive, &packed);
         }
         if aux_enabled(mode, profile.aux_write) {
             let planes = mode.enable_alpha_planes();
             let w = aux_words;
             let value = if planes { &out.c[3] } else { &depth };
-            store_alive(&mut self.fb.ram, w, &alive, |i| value[i] as u16);
+            let value: [u16; LANES] = core::array::from_fn(|i| value[i] as u16);
+            store_alive(&mut self.fb.ram, w, &alive, &value);
         }
         let out_count: u32 = alive[..n].iter().map(|a| *a as u32).sum();
         self.stats.pixels_out += u64::from(out_count);
@@ -539,14 +513,27 @@ impl Fbi {
     }
 }
 
-/// Write `value(i)` to the word of every live lane `i` that has one.
+/// Write `values[i]` to the word of every live lane `i` that has one.
 #[inline(always)]
-fn store_alive(ram: &mut [u16], w: Words, alive: &[bool; LANES], value: impl Fn(usize) -> u16) {
+fn store_alive(ram: &mut [u16], w: Words, alive: &[bool; LANES], values: &[u16; LANES]) {
     let dst = &mut ram[w.first..w.first + (w.hi - w.lo)];
-    for (k, d) in dst.iter_mut().enumerate() {
-        let i = w.lo + k;
-        *d = if alive[i] { value(i) } else { *d };
+    let lanes = alive[w.lo..w.hi].iter().zip(&values[w.lo..w.hi]);
+    for (d, (a, v)) in dst.iter_mut().zip(lanes) {
+        *d = if *a { *v } else { *d };
     }
+}
+
+/// The words of the lanes `w` covers, as lanes (0 elsewhere), and which lanes have one.
+#[inline(always)]
+fn load_words(ram: &[u16], w: Words) -> (Lanes, [bool; LANES]) {
+    let mut v = [0; LANES];
+    let mut has = [false; LANES];
+    let src = &ram[w.first..w.first + (w.hi - w.lo)];
+    for ((v, h), word) in v[w.lo..w.hi].iter_mut().zip(&mut has[w.lo..w.hi]).zip(src) {
+        *v = *word as i32;
+        *h = true;
+    }
+    (v, has)
 }
 
 /// Whether the aux buffer is written (see [`AuxWrite`]).

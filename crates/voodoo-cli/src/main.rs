@@ -331,7 +331,11 @@ fn write_front_png(replayed: &Replayed, path: &Path) -> Result<(u32, u32), Strin
 /// The counters `--stats` prints: the board's own statistics (spec 5.31-5.35, kept
 /// without the hardware registers' 24-bit wrap), command counts, and the modelled
 /// hardware time (`sst1_board::timing`).
-struct Stats(sst1_board::Stats, sst1_board::Timing);
+struct Stats(
+    sst1_board::Stats,
+    sst1_board::Timing,
+    sst1_board::PathCounts,
+);
 
 impl Stats {
     fn to_json(&self) -> serde_json::Value {
@@ -358,6 +362,11 @@ impl Stats {
             "triangles": s.triangles,
             "fastfills": s.fastfills,
             "swaps": s.swaps,
+            "shaded_by": {
+                "span_kernels": self.2.span_kernels,
+                "aliased_layout": self.2.aliased_layout,
+                "reference": self.2.reference,
+            },
         })
     }
 }
@@ -437,7 +446,7 @@ fn replay(
         println!("wrote {} ({w}x{h})", png.display());
     }
     if stats || stats_json.is_some() {
-        let s = Stats(board.stats(), board.timing().clone());
+        let s = Stats(board.stats(), board.timing().clone(), board.path_counts());
         if stats {
             let c = &s.0;
             let t = &s.1;
@@ -466,6 +475,14 @@ fn replay(
             println!("triangles    {}", c.triangles);
             println!("fastfills    {}", c.fastfills);
             println!("swaps        {}", c.swaps);
+            let paths = board.path_counts();
+            println!(
+                "shaded by    span kernels {}, pixel by pixel {} (aliased buffers {}, reference path {})",
+                paths.span_kernels,
+                paths.aliased_layout + paths.reference,
+                paths.aliased_layout,
+                paths.reference
+            );
             for (what, n) in board.diagnostics().iter() {
                 println!("ignored      {n} x {what:?}");
             }
