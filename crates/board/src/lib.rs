@@ -174,6 +174,18 @@ impl Board {
         }
     }
 
+    /// Shade large untextured triangles on `threads` render threads (bands of rows;
+    /// 1, the default, draws on the calling thread). Pixels, counters and status reads
+    /// are the same for every count.
+    pub fn set_threads(&mut self, threads: usize) {
+        self.fbi.set_threads(threads);
+    }
+
+    /// The render threads in use ([`Board::set_threads`]).
+    pub fn threads(&self) -> usize {
+        self.fbi.threads()
+    }
+
     /// Width and height of the video mode set by `videoDimensions`.
     pub fn display_size(&self) -> (u32, u32) {
         self.fbi.display_size()

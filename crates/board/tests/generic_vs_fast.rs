@@ -1,10 +1,13 @@
 //! Differential test of the span kernels (`pixelfx::span`, the fast path) against the
-//! generic path (the reference path, pixel by pixel, (`Board::set_generic_path(true)`): every conformance, glide-sdk and example
-//! trace is replayed both ways with the default profile, and the conformance and glide-sdk
+//! generic path (the reference path, pixel by pixel: `Board::set_generic_path(true)`):
+//! every conformance, glide-sdk and example trace is replayed both ways with the default profile, and the conformance and glide-sdk
 //! ones again with each reference emulator's profile; every dump the trace takes, the final
 //! front, back and aux buffers and the statistics counters must be bit-identical.
 //!
-//! `perf_tex_heavy` (about 40 s for both replays in release, texture-sampling bound)
+//! Every fast replay of the hardware model runs on 1, 2 and 4 render threads
+//! (`Board::set_threads`), each of the reference models' on 1 and 2.
+//!
+//! `perf_tex_heavy` (about 40 s for two replays in release, texture-sampling bound)
 //! runs only in the ignored test: `cargo test -p sst1-board --release --test
 //! generic_vs_fast -- --ignored`.
 
@@ -29,11 +32,21 @@ struct Outcome {
     stats: Stats,
 }
 
-fn replay(path: &Path, profile: AccuracyProfile, reference: bool) -> Outcome {
+/// How a replay draws: the reference path, or the fast path on this many render threads.
+#[derive(Clone, Copy, Debug)]
+enum Run {
+    Reference,
+    Fast { threads: usize },
+}
+
+fn replay(path: &Path, profile: AccuracyProfile, run: Run) -> Outcome {
     let trace = load_trace(path).unwrap_or_else(|e| panic!("{e}"));
     let mut board = Board::new(trace.board_config());
     board.set_profile(profile);
-    board.set_generic_path(reference);
+    match run {
+        Run::Reference => board.set_generic_path(true),
+        Run::Fast { threads } => board.set_threads(threads),
+    }
     let mut buffers: Vec<Buffer> = execute(&trace.ops, &mut board, |_| {})
         .into_iter()
         .map(|d| Buffer {
@@ -59,11 +72,25 @@ fn replay(path: &Path, profile: AccuracyProfile, reference: bool) -> Outcome {
     }
 }
 
-/// Differences between the two replays of `path` with `profile`, in words.
-fn compare(path: &Path, profile: AccuracyProfile) -> Vec<String> {
+/// Differences between the reference replay of `path` with `profile` and the fast
+/// replays on each of `threads` render threads, in words.
+fn compare(path: &Path, profile: AccuracyProfile, threads: &[usize]) -> Vec<String> {
+    let reference = replay(path, profile, Run::Reference);
+    threads
+        .iter()
+        .flat_map(|&t| {
+            differences(
+                path,
+                &reference,
+                &replay(path, profile, Run::Fast { threads: t }),
+            )
+        })
+        .collect()
+}
+
+/// Differences between two replays of `path`, in words.
+fn differences(path: &Path, reference: &Outcome, fast: &Outcome) -> Vec<String> {
     let name = path.file_name().unwrap_or_default().to_string_lossy();
-    let reference = replay(path, profile, true);
-    let fast = replay(path, profile, false);
     let mut problems = Vec::new();
     if reference.stats != fast.stats {
         problems.push(format!(
@@ -112,12 +139,17 @@ fn traces(dir: &str, keep: impl Fn(&str) -> bool) -> Vec<PathBuf> {
     paths
 }
 
+/// The hardware model: the reference path against the fast path on 1, 2 and 4 render
+/// threads.
 fn check_all(paths: &[PathBuf]) {
-    check_all_with(paths, AccuracyProfile::default());
+    check_all_with(paths, AccuracyProfile::default(), &[1, 2, 4]);
 }
 
-fn check_all_with(paths: &[PathBuf], profile: AccuracyProfile) {
-    let problems: Vec<String> = paths.iter().flat_map(|p| compare(p, profile)).collect();
+fn check_all_with(paths: &[PathBuf], profile: AccuracyProfile, threads: &[usize]) {
+    let problems: Vec<String> = paths
+        .iter()
+        .flat_map(|p| compare(p, profile, threads))
+        .collect();
     assert!(
         problems.is_empty(),
         "{} difference(s) between the reference and fast paths:\n{}",
@@ -150,18 +182,32 @@ fn example_traces_identical() {
 
 /// The reference emulators' profiles (the conformance vote replays every trace with
 /// them) run the same span kernels, compiled with their switches: both paths agree for
-/// each of them too.
+/// each of them too, on one render thread and two.
 #[test]
 fn reference_profiles_identical() {
     let mut paths = traces("conformance/traces", |name| !SLOW.contains(&name));
     paths.extend(traces("glide-sdk/traces", |_| true));
     for reference in Reference::ALL {
-        check_all_with(&paths, reference.profile());
+        check_all_with(&paths, reference.profile(), &[1, 2]);
     }
 }
 
+/// The bands of the threaded walk do run on the traces above (so that the thread counts
+/// of [`check_all`] are not a no-op): a large untextured triangle goes to them.
 #[test]
-#[ignore = "about 40 s in release: the texture-heavy benchmark trace, replayed twice"]
+fn render_threads_take_large_untextured_triangles() {
+    let path = traces("conformance/traces", |name| name == "gouraud_dither4");
+    let trace = load_trace(&path[0]).unwrap_or_else(|e| panic!("{e}"));
+    let mut board = Board::new(trace.board_config());
+    board.set_threads(2);
+    execute(&trace.ops, &mut board, |_| {});
+    let counts = board.path_counts();
+    assert!(counts.in_bands > 50_000, "{counts:?}");
+    assert_eq!(counts.aliased_layout + counts.reference, 0, "{counts:?}");
+}
+
+#[test]
+#[ignore = "about 80 s in release: the texture-heavy benchmark trace, replayed four times"]
 fn slow_traces_identical() {
     let paths = traces("conformance/traces", |name| SLOW.contains(&name));
     assert_eq!(paths.len(), SLOW.len());

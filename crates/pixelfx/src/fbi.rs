@@ -46,13 +46,15 @@ pub struct Fbi {
     /// The disputed-behaviour switches held at run time: what the run-time-profile model
     /// ([`crate::model::RuntimeProfile`]) reads, and the fixed models' own profile (the
     /// board keeps the two in step).
-    profile: PixelProfile,
+    pub(crate) profile: PixelProfile,
     /// Dither tables for the profile's 2x2 matrix.
     pub(crate) dither: Dither,
     /// Force the reference path (the pipeline pixel by pixel); see [`Fbi::set_generic_path`].
     pub(crate) generic_path: bool,
     /// Which path shaded the triangles' pixels.
     pub path_counts: PathCounts,
+    /// Render threads for large triangles ([`Fbi::set_threads`]).
+    pub(crate) threads: usize,
 }
 
 /// How many triangle pixels (inside the clip rectangle) each path shaded: what
@@ -62,11 +64,23 @@ pub struct Fbi {
 pub struct PathCounts {
     /// By the span kernels ([`crate::span`]).
     pub span_kernels: u64,
+    /// Of those, on the render threads, in bands of rows ([`Fbi::set_threads`]).
+    pub in_bands: u64,
     /// Pixel by pixel because colour and aux words of different lanes alias (a buffer
     /// layout no driver sets; [`crate::span`]).
     pub aliased_layout: u64,
     /// Pixel by pixel because the reference path was forced ([`Fbi::set_generic_path`]).
     pub reference: u64,
+}
+
+impl PathCounts {
+    /// Add `other`'s counts to these.
+    pub fn add(&mut self, other: &PathCounts) {
+        self.span_kernels += other.span_kernels;
+        self.in_bands += other.in_bands;
+        self.aliased_layout += other.aliased_layout;
+        self.reference += other.reference;
+    }
 }
 
 impl Fbi {
@@ -83,6 +97,7 @@ impl Fbi {
             profile,
             generic_path: false,
             path_counts: PathCounts::default(),
+            threads: 1,
         }
     }
 

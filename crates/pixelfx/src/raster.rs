@@ -4,11 +4,13 @@
 use sst1_regs::Rgba;
 
 use crate::fbi::Fbi;
+use crate::fbi::PathCounts;
 use crate::iter::Iterated;
 use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::StippleRotate;
-use crate::span::{ChunkAt, Lanes, TriangleLanes, LANES};
+use crate::span::{ChunkAt, Lanes, Memory, Shader, TriangleLanes, Words, LANES};
+use crate::stats::Stats;
 use crate::{box86, setup};
 
 /// What the TMU chain gives the FBI for one pixel.
@@ -115,6 +117,18 @@ impl Fbi {
         self.generic_path = on;
     }
 
+    /// Shade large untextured triangles on `threads` render threads (1: on the calling
+    /// thread only; 0 counts as 1). Pixels and counters are the same for every count; the
+    /// threads are rayon's global pool.
+    pub fn set_threads(&mut self, threads: usize) {
+        self.threads = threads.max(1);
+    }
+
+    /// The render threads set with [`Fbi::set_threads`].
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
     /// Whether the generic path is forced.
     pub fn generic_path(&self) -> bool {
         self.generic_path
@@ -122,7 +136,9 @@ impl Fbi {
 
     /// Walk the triangle's spans and shade their pixels: a chunk of up to
     /// [`crate::span::LANES`] pixels at a time with the span kernels (`SPANS`), or one
-    /// pixel at a time with the reference path.
+    /// pixel at a time with the reference path. With more than one render thread
+    /// ([`Fbi::set_threads`]), the rows of a large untextured triangle are shaded in bands
+    /// on several threads ([`Fbi::shade_rows_threaded`]).
     #[inline(always)]
     fn walk<M: PixelModel, T: TexelSource, const SPANS: bool>(
         &mut self,
@@ -133,7 +149,7 @@ impl Fbi {
         let flip = mode.y_origin();
         let profile = M::pixel(&self.profile());
         let origin = profile.param_origin;
-        let (ax, ay) = (origin.pixel(self.params.ax), origin.pixel(self.params.ay));
+        let a = (origin.pixel(self.params.ax), origin.pixel(self.params.ay));
         let params = self.params;
         // Only rotate-mode stipple reads the per-triangle copy.
         let per_triangle = profile.stipple_rotate == StippleRotate::PerTriangle
@@ -141,6 +157,13 @@ impl Fbi {
             && !mode.enable_stipple_pattern();
         let mut copy = per_triangle.then(|| box86::StippleCopy::new(st.stipple));
         let consts = SPANS.then(|| TriangleLanes::new(st));
+        // Bands need rows that depend on nothing but themselves: no texel source (its
+        // caches have state) and no per-triangle stipple copy (stepped row by row).
+        let threaded = SPANS
+            && self.threads > 1
+            && copy.is_none()
+            && !(st.color_path.texture_enable() && st.fetch_texel);
+        let mut rows = Vec::new();
         for span in setup::spans(&params, profile.edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);
             // Every pixel the walker visits counts as "in" (spec 5.31), clipped or not.
@@ -158,29 +181,96 @@ impl Fbi {
             if start >= stop {
                 continue;
             }
-            let dy = span.y - ay;
-            let mut stipple = st.stipple;
-            let prow = profile.pattern_row.row(span.y, scry);
-            tex.begin_span(start - ax, dy, (stop - start) as usize);
-            if let Some(c) = &mut copy {
-                c.step_row(start, stop, params.right_to_left);
+            let row = Row {
+                y: span.y,
+                scry,
+                start,
+                stop,
+                prow: profile.pattern_row.row(span.y, scry),
+            };
+            if threaded {
+                rows.push(row);
+            } else {
+                self.shade_row::<M, T>(st, &row, a, &mut copy, tex, consts.as_ref());
             }
+        }
+        if threaded {
             if let Some(consts) = &consts {
-                let mut x0 = start;
-                while x0 < stop {
-                    let n = ((stop - x0) as usize).min(LANES);
-                    let at = ChunkAt {
-                        x0,
-                        n,
-                        y: span.y,
-                        scry,
-                        prow,
-                        span_start: start,
-                        ax,
-                        dy,
+                if self.shade_rows_threaded::<M>(st, &rows, a, consts) {
+                    return;
+                }
+            }
+            for row in &rows {
+                self.shade_row::<M, T>(st, row, a, &mut copy, tex, consts.as_ref());
+            }
+        }
+    }
+
+    /// Shade one row of a triangle, by chunks with the span kernels when `consts` is
+    /// given, else pixel by pixel with the reference path. `(ax, ay)` is vertex A's
+    /// pixel.
+    #[inline(always)]
+    fn shade_row<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        row: &Row,
+        (ax, ay): (i32, i32),
+        copy: &mut Option<box86::StippleCopy>,
+        tex: &mut T,
+        consts: Option<&TriangleLanes>,
+    ) {
+        let Row {
+            y,
+            scry,
+            start,
+            stop,
+            prow,
+        } = *row;
+        let params = self.params;
+        let dy = y - ay;
+        let mut stipple = st.stipple;
+        tex.begin_span(start - ax, dy, (stop - start) as usize);
+        if let Some(c) = copy {
+            c.step_row(start, stop, params.right_to_left);
+        }
+        if let Some(consts) = consts {
+            let mut x0 = start;
+            while x0 < stop {
+                let n = ((stop - x0) as usize).min(LANES);
+                let at = ChunkAt {
+                    x0,
+                    n,
+                    y,
+                    scry,
+                    prow,
+                    span_start: start,
+                    ax,
+                    dy,
+                };
+                let it = Iterated::at(&params, x0 - ax, dy);
+                let dest_words = Words::of(self, st.dest, x0, n, scry);
+                let aux_words = st
+                    .aux
+                    .map_or(Words::NONE, |a| Words::of(self, a, x0, n, scry));
+                if dest_words.crosses(&aux_words) {
+                    self.shade_chunk_per_pixel::<M, T>(
+                        st,
+                        &at,
+                        &it,
+                        &mut stipple,
+                        copy.as_ref(),
+                        tex,
+                    );
+                } else {
+                    let mut shader = Shader {
+                        stats: &mut self.stats,
+                        counts: &mut self.path_counts,
+                        dither: &self.dither,
+                        fog_table: &self.fog_table,
+                        params: &self.params,
+                        profile: self.profile,
                     };
-                    let it = Iterated::at(&params, x0 - ax, dy);
-                    self.shade_chunk::<M, T>(
+                    shader.shade_chunk::<M, T>(
                         st,
                         &at,
                         &it,
@@ -188,30 +278,236 @@ impl Fbi {
                         copy.as_ref(),
                         tex,
                         consts,
+                        &mut Memory::Whole(&mut self.fb.ram),
+                        (dest_words, aux_words),
                     );
-                    x0 += n as i32;
                 }
-                continue;
+                x0 += n as i32;
             }
-            self.path_counts.reference += (stop - start) as u64;
-            let mut it = Iterated::at(&params, start - ax, dy);
-            for x in start..stop {
-                if let Some(c) = &copy {
-                    stipple = c.at((x - start) as usize);
-                }
-                let r = self.shade_pixel::<M>(
-                    st,
-                    x,
-                    prow,
-                    scry,
-                    &it,
-                    Source::Triangle,
-                    &mut stipple,
-                    || tex.texel(x - ax, dy, x, span.y),
-                );
-                self.count(r);
-                it.step_x(&params);
+            return;
+        }
+        self.path_counts.reference += (stop - start) as u64;
+        let mut it = Iterated::at(&params, start - ax, dy);
+        for x in start..stop {
+            if let Some(c) = &copy {
+                stipple = c.at((x - start) as usize);
             }
+            let r = self.shade_pixel::<M>(
+                st,
+                x,
+                prow,
+                scry,
+                &it,
+                Source::Triangle,
+                &mut stipple,
+                || tex.texel(x - ax, dy, x, y),
+            );
+            self.count(r);
+            it.step_x(&params);
+        }
+    }
+
+    /// Shade `rows` (an untextured triangle's, clipped) in bands of [`BAND_ROWS`] rows
+    /// dealt round-robin to the render threads, each band with its own counters, added
+    /// up afterwards. Returns `false`, having done nothing, where that could differ from
+    /// shading the rows in order: a small triangle (not worth the threads), a row whose
+    /// lanes would reach beyond the frame-buffer row (the single walk lets them run on
+    /// into the next row), or colour and aux rows that share memory. Otherwise every row
+    /// touches only its own words, so the bands give the pixels and counters of the
+    /// single walk whatever the thread count.
+    fn shade_rows_threaded<M: PixelModel>(
+        &mut self,
+        st: &DrawState,
+        rows: &[Row],
+        a: (i32, i32),
+        consts: &TriangleLanes,
+    ) -> bool {
+        let row_pixels = self.fb.layout.row_pixels as usize;
+        let pixels: usize = rows.iter().map(|r| (r.stop - r.start) as usize).sum();
+        if self.threads < 2 || row_pixels == 0 || pixels < MIN_THREADED_PIXELS {
+            return false;
+        }
+        if rows
+            .iter()
+            .any(|r| r.start < 0 || r.stop as usize > row_pixels)
+        {
+            return false;
+        }
+        let ys = rows.iter().filter(|r| r.scry >= 0).map(|r| r.scry as usize);
+        let (Some(ymin), Some(ymax)) = (ys.clone().min(), ys.max()) else {
+            return false;
+        };
+        let len = self.fb.ram.len();
+        let region = |base: usize| {
+            (base + ymin * row_pixels).min(len)..(base + (ymax + 1) * row_pixels).min(len)
+        };
+        let colour = region(st.dest);
+        let aux = st.aux.map(region).unwrap_or(0..0);
+        let ram = &mut self.fb.ram[..];
+        let (colour_words, aux_words): (&mut [u16], &mut [u16]) = if aux.is_empty() {
+            (&mut ram[colour], &mut [])
+        } else if colour.is_empty() {
+            (&mut [], &mut ram[aux])
+        } else if aux.start >= colour.end {
+            let (lo, hi) = ram.split_at_mut(aux.start);
+            (&mut lo[colour], &mut hi[..aux.len()])
+        } else if colour.start >= aux.end {
+            let (lo, hi) = ram.split_at_mut(colour.start);
+            (&mut hi[..colour.len()], &mut lo[aux])
+        } else {
+            return false;
+        };
+        let mut colour_rows: Vec<Option<&mut [u16]>> =
+            colour_words.chunks_mut(row_pixels).map(Some).collect();
+        let mut aux_rows: Vec<Option<&mut [u16]>> =
+            aux_words.chunks_mut(row_pixels).map(Some).collect();
+        let threads = self.threads;
+        let mut bands: Vec<Vec<BandRow<'_>>> = (0..threads).map(|_| Vec::new()).collect();
+        for (i, row) in rows.iter().enumerate() {
+            let k = (row.scry >= 0).then(|| row.scry as usize - ymin);
+            let (colour, aux) = (take_row(&mut colour_rows, k), take_row(&mut aux_rows, k));
+            bands[(i / BAND_ROWS) % threads].push(BandRow {
+                row: *row,
+                colour,
+                aux,
+            });
+        }
+        let mut counters = vec![(Stats::default(), PathCounts::default()); threads];
+        let (dither, fog_table, params, profile) =
+            (&self.dither, &self.fog_table, &self.params, self.profile);
+        rayon::scope(|scope| {
+            for (band, (stats, counts)) in bands.into_iter().zip(counters.iter_mut()) {
+                scope.spawn(move |_| {
+                    let mut shader = Shader {
+                        stats,
+                        counts,
+                        dither,
+                        fog_table,
+                        params,
+                        profile,
+                    };
+                    shade_band::<M>(&mut shader, st, band, a, consts);
+                });
+            }
+        });
+        for (stats, counts) in &counters {
+            self.stats.add(stats);
+            self.path_counts.add(counts);
+            self.path_counts.in_bands += counts.span_kernels;
+        }
+        true
+    }
+}
+
+/// Row `k` of `rows`, taken out (empty where there is none).
+fn take_row<'m>(rows: &mut [Option<&'m mut [u16]>], k: Option<usize>) -> &'m mut [u16] {
+    k.and_then(|k| rows.get_mut(k))
+        .and_then(Option::take)
+        .unwrap_or_default()
+}
+
+/// Rows per band of the threaded walk.
+const BAND_ROWS: usize = 4;
+
+/// The fewest pixels a triangle must have for its rows to go to the render threads.
+const MIN_THREADED_PIXELS: usize = 4096;
+
+/// One row of a triangle after clipping: where its pixels are.
+#[derive(Clone, Copy, Debug)]
+struct Row {
+    /// Raster row.
+    y: i32,
+    /// Frame-buffer row after the Y-origin flip.
+    scry: i32,
+    /// Columns `start..stop`.
+    start: i32,
+    stop: i32,
+    /// Row the dither and stipple patterns are indexed with.
+    prow: i32,
+}
+
+/// A row of a band with the frame-buffer rows it writes (empty where a buffer has none).
+struct BandRow<'m> {
+    row: Row,
+    colour: &'m mut [u16],
+    aux: &'m mut [u16],
+}
+
+/// Shade a band's rows with the span kernels, compiled with AVX2 where the CPU has it.
+fn shade_band<M: PixelModel>(
+    shader: &mut Shader<'_>,
+    st: &DrawState,
+    band: Vec<BandRow<'_>>,
+    a: (i32, i32),
+    consts: &TriangleLanes,
+) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU has AVX2 (checked just above).
+        unsafe { shade_band_avx2::<M>(shader, st, band, a, consts) };
+        return;
+    }
+    shade_band_rows::<M>(shader, st, band, a, consts);
+}
+
+/// [`shade_band_rows`] compiled with AVX2 enabled.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn shade_band_avx2<M: PixelModel>(
+    shader: &mut Shader<'_>,
+    st: &DrawState,
+    band: Vec<BandRow<'_>>,
+    a: (i32, i32),
+    consts: &TriangleLanes,
+) {
+    shade_band_rows::<M>(shader, st, band, a, consts);
+}
+
+/// The rows of a band, in order, a chunk at a time (the same chunks as
+/// [`Fbi::shade_row`]; no texel source, no per-triangle stipple copy).
+#[inline(always)]
+fn shade_band_rows<M: PixelModel>(
+    shader: &mut Shader<'_>,
+    st: &DrawState,
+    band: Vec<BandRow<'_>>,
+    (ax, ay): (i32, i32),
+    consts: &TriangleLanes,
+) {
+    for BandRow { row, colour, aux } in band {
+        let dy = row.y - ay;
+        let mut stipple = st.stipple;
+        let (colour_len, aux_len) = (colour.len(), aux.len());
+        let mut memory = Memory::Rows { colour, aux };
+        let mut x0 = row.start;
+        while x0 < row.stop {
+            let n = ((row.stop - x0) as usize).min(LANES);
+            let at = ChunkAt {
+                x0,
+                n,
+                y: row.y,
+                scry: row.scry,
+                prow: row.prow,
+                span_start: row.start,
+                ax,
+                dy,
+            };
+            let it = Iterated::at(shader.params, x0 - ax, dy);
+            let words = (
+                Words::in_row(colour_len, x0, n),
+                Words::in_row(aux_len, x0, n),
+            );
+            shader.shade_chunk::<M, NoTexture>(
+                st,
+                &at,
+                &it,
+                &mut stipple,
+                None,
+                &mut NoTexture,
+                consts,
+                &mut memory,
+                words,
+            );
+            x0 += n as i32;
         }
     }
 }

@@ -23,13 +23,19 @@ use sst1_regs::{
     AlphaLocalSelect, AlphaSelect, CcMselect, DepthFunction, FbzColorPath, FbzMode, RgbSelect, Rgba,
 };
 
-use crate::fbi::Fbi;
+use sst1_dither::Dither;
+use sst1_fog::FogTable;
+
+use crate::fbi::{Fbi, PathCounts};
 use crate::iter::{wfloat, Iterated};
 use crate::model::PixelModel;
+use crate::params::TriangleParams;
 use crate::pipeline::{DrawState, Source};
+use crate::profile::PixelProfile;
 use crate::profile::{AlphaTestInput, AuxWrite, ZAlphaByte};
 use crate::raster::TexelSource;
 use crate::stats::Kill;
+use crate::stats::Stats;
 use crate::{alpha_test, blend, fog, stipple};
 
 /// The most pixels one chunk holds.
@@ -41,14 +47,14 @@ pub type Lanes = [i32; LANES];
 /// The lanes `lo..hi` of a chunk whose words exist in one buffer, and the word index of
 /// lane `lo` (lane `i`'s word is `first + i - lo`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Words {
+pub(crate) struct Words {
     lo: usize,
     hi: usize,
     first: usize,
 }
 
 impl Words {
-    const NONE: Words = Words {
+    pub(crate) const NONE: Words = Words {
         lo: 0,
         hi: 0,
         first: 0,
@@ -56,13 +62,25 @@ impl Words {
 
     /// The words of `n` lanes from column `x0` of frame-buffer row `y` in the buffer at
     /// word `base`, as [`crate::fb::FrameBuffer::index`] finds them one at a time.
-    fn of(fbi: &Fbi, base: usize, x0: i32, n: usize, y: i32) -> Self {
+    pub(crate) fn of(fbi: &Fbi, base: usize, x0: i32, n: usize, y: i32) -> Self {
         if y < 0 {
             return Self::NONE;
         }
         let row = fbi.fb.layout.row_pixels as i64;
         let start = base as i64 + y as i64 * row + x0 as i64;
-        let len = fbi.fb.ram.len() as i64;
+        Self::from_start(start, fbi.fb.ram.len() as i64, x0, n)
+    }
+
+    /// The words of `n` lanes from column `x0` of a row held alone in a slice of `len`
+    /// words (the threaded walk; the caller has checked that no lane lies beyond the
+    /// row).
+    pub(crate) fn in_row(len: usize, x0: i32, n: usize) -> Self {
+        Self::from_start(x0 as i64, len as i64, x0, n)
+    }
+
+    /// Lane `i` at word `start + i`, existing where the column is not negative and the
+    /// word is below `len`.
+    fn from_start(start: i64, len: i64, x0: i32, n: usize) -> Self {
         let lo = (-(x0 as i64)).clamp(0, n as i64);
         let hi = (len - start).clamp(lo, n as i64);
         if lo >= hi {
@@ -77,7 +95,7 @@ impl Words {
 
     /// Whether a write through `self` to one lane can land on a word that `other` reads
     /// for a different lane.
-    fn crosses(&self, other: &Words) -> bool {
+    pub(crate) fn crosses(&self, other: &Words) -> bool {
         if self.lo >= self.hi || other.lo >= other.hi {
             return false;
         }
@@ -157,7 +175,7 @@ impl TriangleLanes {
 /// Kill the live lanes of `alive` for which `fails` holds, counting each as `kill`.
 #[inline(always)]
 fn kill_where(
-    fbi: &mut Fbi,
+    stats: &mut Stats,
     alive: &mut [bool; LANES],
     n: usize,
     kill: Kill,
@@ -170,7 +188,7 @@ fn kill_where(
         *a &= !f;
     }
     if killed > 0 {
-        fbi.stats.kill_many(kill, killed);
+        stats.kill_many(kill, killed);
     }
 }
 
@@ -193,11 +211,55 @@ fn combine_channel(
     }
 }
 
-impl Fbi {
+/// Where a chunk's words are: the whole frame buffer (word indices), or one row of the
+/// colour buffer and one of the aux buffer (a band of the threaded walk).
+pub(crate) enum Memory<'m> {
+    /// The frame buffer; [`Words`] index it.
+    Whole(&'m mut [u16]),
+    /// A row of each buffer (empty where the buffer has no such row); [`Words`] index
+    /// each row.
+    Rows {
+        colour: &'m mut [u16],
+        aux: &'m mut [u16],
+    },
+}
+
+impl Memory<'_> {
+    #[inline(always)]
+    fn colour(&mut self) -> &mut [u16] {
+        match self {
+            Memory::Whole(ram) => ram,
+            Memory::Rows { colour, .. } => colour,
+        }
+    }
+
+    #[inline(always)]
+    fn aux(&mut self) -> &mut [u16] {
+        match self {
+            Memory::Whole(ram) => ram,
+            Memory::Rows { aux, .. } => aux,
+        }
+    }
+}
+
+/// What the span kernels read and count besides the frame buffer: the FBI's tables and
+/// counters, borrowed from the FBI (or, for a band of the threaded walk, counters of its
+/// own, added up afterwards).
+pub(crate) struct Shader<'a> {
+    pub stats: &'a mut Stats,
+    pub counts: &'a mut PathCounts,
+    pub dither: &'a Dither,
+    pub fog_table: &'a FogTable,
+    pub params: &'a TriangleParams,
+    pub profile: PixelProfile,
+}
+
+impl Shader<'_> {
     /// Shade one chunk of a span: every stage of [`Fbi::shade_pixel`], a stage at a time.
     /// `it` holds the iterators at the chunk's first pixel; `stipple_state` is the row's
     /// rotating stipple register and `copy` 86Box's per-triangle stipple copy, as in the
-    /// walker.
+    /// walker. `dest_words` and `aux_words` locate the lanes in `mem`; the caller has
+    /// checked that they do not cross ([`Words::crosses`]).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource>(
@@ -209,21 +271,14 @@ impl Fbi {
         copy: Option<&crate::box86::StippleCopy>,
         tex: &mut T,
         consts: &TriangleLanes,
+        mem: &mut Memory<'_>,
+        (dest_words, aux_words): (Words, Words),
     ) {
         let n = at.n;
         debug_assert!((1..=LANES).contains(&n));
         let mode = st.mode;
-        let dest_words = Words::of(self, st.dest, at.x0, n, at.scry);
-        let aux_words = st
-            .aux
-            .map_or(Words::NONE, |a| Words::of(self, a, at.x0, n, at.scry));
-        if dest_words.crosses(&aux_words) {
-            self.path_counts.aliased_layout += n as u64;
-            self.shade_chunk_per_pixel::<M, T>(st, at, it, stipple_state, copy, tex);
-            return;
-        }
-        self.path_counts.span_kernels += n as u64;
-        let profile = M::pixel(&self.profile());
+        self.counts.span_kernels += n as u64;
+        let profile = M::pixel(&self.profile);
         let cp = st.color_path;
         let am = st.alpha_mode;
         let fog_mode = st.fog_mode;
@@ -278,14 +333,14 @@ impl Fbi {
             let no_aux_fails = func == DepthFunction::Never;
             let mut fails = [no_aux_fails; LANES];
             let w = aux_words;
-            let ram = &self.fb.ram[w.first..w.first + (w.hi - w.lo)];
+            let ram = &mem.aux()[w.first..w.first + (w.hi - w.lo)];
             for (f, (s, d)) in fails[w.lo..w.hi]
                 .iter_mut()
                 .zip(source[w.lo..w.hi].iter().zip(ram))
             {
                 *f = !func.passes(*s, *d as i32);
             }
-            kill_where(self, &mut alive, n, Kill::DepthFunc, |i| fails[i]);
+            kill_where(self.stats, &mut alive, n, Kill::DepthFunc, |i| fails[i]);
         }
 
         // --- colour selection ---
@@ -328,12 +383,12 @@ impl Fbi {
                 (key >> 8 & 0xff) as i32,
                 (key & 0xff) as i32,
             );
-            kill_where(self, &mut alive, n, Kill::Chroma, |i| {
+            kill_where(self.stats, &mut alive, n, Kill::Chroma, |i| {
                 other_rgb[0][i] == kr && other_rgb[1][i] == kg && other_rgb[2][i] == kb
             });
         }
         if mode.enable_alpha_mask() {
-            kill_where(self, &mut alive, n, Kill::AlphaMask, |i| {
+            kill_where(self.stats, &mut alive, n, Kill::AlphaMask, |i| {
                 other_a[i] & 1 == 0
             });
         }
@@ -341,7 +396,7 @@ impl Fbi {
         let (func, reference) = (am.alpha_function(), am.alpha_ref());
         let test_combined = profile.alpha_test_input == AlphaTestInput::Combined;
         if alpha_test && !test_combined {
-            kill_where(self, &mut alive, n, Kill::AlphaFunc, |i| {
+            kill_where(self.stats, &mut alive, n, Kill::AlphaFunc, |i| {
                 !alpha_test::test(func, other_a[i] as u8, reference)
             });
         }
@@ -397,7 +452,7 @@ impl Fbi {
             zero,
         );
         if alpha_test && test_combined {
-            kill_where(self, &mut alive, n, Kill::AlphaFunc, |i| {
+            kill_where(self.stats, &mut alive, n, Kill::AlphaFunc, |i| {
                 !alpha_test::test(func, combined.c[3][i] as u8, reference)
             });
         }
@@ -417,7 +472,7 @@ impl Fbi {
             fog::apply_fog_lanes(
                 fog_mode,
                 st.fog_color,
-                &self.fog_table,
+                self.fog_table,
                 &input,
                 profile.fog,
                 &mut f.c,
@@ -431,9 +486,9 @@ impl Fbi {
         // --- alpha blend ---
         let blended: ColourLanes;
         let out = if am.alpha_blend_enable() {
-            let (dst_rgb565, _) = load_words(&self.fb.ram, dest_words);
-            let (dst_aux, has_aux) = load_words(&self.fb.ram, aux_words);
-            let dither = &self.dither;
+            let (dst_rgb565, _) = load_words(mem.colour(), dest_words);
+            let (dst_aux, has_aux) = load_words(mem.aux(), aux_words);
+            let dither = self.dither;
             let dither_value: Lanes = core::array::from_fn(|i| {
                 let x = (at.x0 + i as i32) as u32;
                 dither.matrix_value(st.dither_matrix, x, at.prow as u32) as i32
@@ -465,23 +520,25 @@ impl Fbi {
                 [&out.c[0], &out.c[1], &out.c[2]],
                 &mut packed,
             );
-            store_alive(&mut self.fb.ram, w, &alive, &packed);
+            store_alive(mem.colour(), w, &alive, &packed);
         }
         if aux_enabled(mode, profile.aux_write) {
             let planes = mode.enable_alpha_planes();
             let w = aux_words;
             let value = if planes { &out.c[3] } else { &depth };
             let value: [u16; LANES] = core::array::from_fn(|i| value[i] as u16);
-            store_alive(&mut self.fb.ram, w, &alive, &value);
+            store_alive(mem.aux(), w, &alive, &value);
         }
         let out_count: u32 = alive[..n].iter().map(|a| *a as u32).sum();
         self.stats.pixels_out += u64::from(out_count);
     }
+}
 
+impl Fbi {
     /// The reference path for one chunk ([`Fbi::shade`] per pixel), for the buffer
     /// layouts whose lanes alias (see the module documentation).
     #[inline(never)]
-    fn shade_chunk_per_pixel<M: PixelModel, T: TexelSource>(
+    pub(crate) fn shade_chunk_per_pixel<M: PixelModel, T: TexelSource>(
         &mut self,
         st: &DrawState,
         at: &ChunkAt,
@@ -490,6 +547,7 @@ impl Fbi {
         copy: Option<&crate::box86::StippleCopy>,
         tex: &mut T,
     ) {
+        self.path_counts.aliased_layout += at.n as u64;
         let p = self.params;
         let mut it = *it;
         for i in 0..at.n {

@@ -56,6 +56,30 @@ impl Stats {
         }
     }
 
+    /// Add `other`'s counts to these (the counters of bands shaded apart).
+    pub fn add(&mut self, other: &Stats) {
+        let Stats {
+            pixels_in,
+            chroma_fail,
+            zfunc_fail,
+            afunc_fail,
+            pixels_out,
+            triangles,
+            fastfills,
+            swaps,
+            spans,
+        } = *other;
+        self.pixels_in += pixels_in;
+        self.chroma_fail += chroma_fail;
+        self.zfunc_fail += zfunc_fail;
+        self.afunc_fail += afunc_fail;
+        self.pixels_out += pixels_out;
+        self.triangles += triangles;
+        self.fastfills += fastfills;
+        self.swaps += swaps;
+        self.spans += spans;
+    }
+
     /// Account for `count` pixels killed for the same reason.
     #[inline]
     pub fn kill_many(&mut self, k: Kill, count: u32) {

@@ -76,6 +76,10 @@ enum Command {
         /// `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see docs/accuracy.md).
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
+        /// Render threads for large untextured triangles (bands of rows; the output is the
+        /// same for every count). Default: the machine's cores.
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
     },
     /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
     /// against reference emulators' goldens with the conformance pass rule: every pixel
@@ -181,6 +185,7 @@ fn main() -> ExitCode {
             stats,
             stats_json,
             profile,
+            threads,
         } => resolve_model(model, profile.as_deref()).and_then(|profile| {
             replay(
                 &trace,
@@ -189,6 +194,7 @@ fn main() -> ExitCode {
                 stats,
                 stats_json.as_deref(),
                 profile,
+                threads.unwrap_or_else(default_threads),
             )
         }),
         Command::Check {
@@ -278,6 +284,7 @@ struct Replayed {
 fn run(
     stream: TraceStream<'_>,
     profile: Option<AccuracyProfile>,
+    threads: usize,
     mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
 ) -> Result<Replayed, String> {
     let bar = if std::io::stderr().is_terminal() {
@@ -295,6 +302,7 @@ fn run(
         Some(profile) => {
             let mut board = Board::new(config);
             board.set_profile(profile);
+            board.set_threads(threads);
             execute_stream(stream, &mut board, progress, sink).map(|_| {
                 let front = board.dump_buffer(BufferKind::Front);
                 Replayed { board, front }
@@ -364,6 +372,7 @@ impl Stats {
             "swaps": s.swaps,
             "shaded_by": {
                 "span_kernels": self.2.span_kernels,
+                "in_bands": self.2.in_bands,
                 "aliased_layout": self.2.aliased_layout,
                 "reference": self.2.reference,
             },
@@ -425,6 +434,11 @@ impl<'a> DumpTarget<'a> {
     }
 }
 
+/// The render threads when `--threads` is not given: the machine's cores.
+fn default_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
 fn replay(
     path: &Path,
     out: Option<&Path>,
@@ -432,10 +446,11 @@ fn replay(
     stats: bool,
     stats_json: Option<&Path>,
     profile: Option<AccuracyProfile>,
+    threads: usize,
 ) -> Result<(), String> {
     let stream = open_trace(path).map_err(|e| e.to_string())?;
     let mut target = DumpTarget::new(path, out)?;
-    let replayed = run(stream, profile, |dump| {
+    let replayed = run(stream, profile, threads, |dump| {
         let written = target.write(&dump)?;
         println!("wrote {}", written.display());
         Ok(())
@@ -477,8 +492,9 @@ fn replay(
             println!("swaps        {}", c.swaps);
             let paths = board.path_counts();
             println!(
-                "shaded by    span kernels {}, pixel by pixel {} (aliased buffers {}, reference path {})",
+                "shaded by    span kernels {} ({} on render threads), pixel by pixel {} (aliased buffers {}, reference path {})",
                 paths.span_kernels,
+                paths.in_bands,
                 paths.aliased_layout + paths.reference,
                 paths.aliased_layout,
                 paths.reference
@@ -525,7 +541,7 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     check_goldens_folder(goldens)?;
     let stream = open_trace(path).map_err(|e| e.to_string())?;
     let (mut consensus, mut majority, mut judged, mut unjudged) = (0, 0, 0, 0);
-    run(stream, profile, |dump| {
+    run(stream, profile, default_threads(), |dump| {
         let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
         let found: Vec<(&str, Vec<u16>)> = Reference::ALL
             .iter()
@@ -579,7 +595,12 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
 
 fn demo(png: &Path) -> Result<(), String> {
     let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
-    let replayed = run(stream, Some(AccuracyProfile::default()), |_| Ok(()))?;
+    let replayed = run(
+        stream,
+        Some(AccuracyProfile::default()),
+        default_threads(),
+        |_| Ok(()),
+    )?;
     let (w, h) = write_front_png(&replayed, png)?;
     println!(
         "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",
