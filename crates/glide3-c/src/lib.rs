@@ -23,6 +23,8 @@
 //! * `VOODOO_FBI_MB`, `VOODOO_TMUS`, `VOODOO_TMU_MB`: the board (default 4, 1, 4).
 //! * `VOODOO_MODEL`: the model of the board, `hardware` (the default) or a reference
 //!   emulator's, `mame`, `dosbox-staging` or `86box` (`voodoo replay --model`).
+//! * `VOODOO_THREADS=N`: render threads for large untextured triangles (default: the
+//!   machine's cores; `voodoo replay --threads`). The pixels are the same for every N.
 //!
 //! Headless by default: without `VOODOO_WINDOW` there is no window; the board is the only
 //! output.
@@ -387,6 +389,16 @@ fn model_profile() -> AccuracyProfile {
     }
 }
 
+/// `VOODOO_THREADS`, or the machine's cores; a value that is not a number counts as
+/// unset, and at most 256 threads are used.
+fn render_threads() -> usize {
+    std::env::var("VOODOO_THREADS")
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok())
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        .clamp(1, 256)
+}
+
 fn png_setting() -> Option<(String, Option<Vec<u32>>)> {
     let path = std::env::var("VOODOO_PNG").ok()?;
     let swaps = std::env::var("VOODOO_PNG_SWAPS")
@@ -484,6 +496,7 @@ pub extern "C" fn grGlideInit() {
             let cfg = board_config();
             let mut board = Board::new(cfg);
             board.set_profile(model_profile());
+            board.set_threads(render_threads());
             let board = SharedBoard(Rc::new(RefCell::new(board)));
             let recording = Recording::from_env(&board, cfg);
             let bus = match &recording {

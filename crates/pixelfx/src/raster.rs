@@ -118,10 +118,10 @@ impl Fbi {
     }
 
     /// Shade large untextured triangles on `threads` render threads (1: on the calling
-    /// thread only; 0 counts as 1). Pixels and counters are the same for every count; the
+    /// thread only; 0 counts as 1, more than [`MAX_THREADS`] as that). Pixels and counters are the same for every count; the
     /// threads are rayon's global pool.
     pub fn set_threads(&mut self, threads: usize) {
-        self.threads = threads.max(1);
+        self.threads = threads.clamp(1, MAX_THREADS);
     }
 
     /// The render threads set with [`Fbi::set_threads`].
@@ -405,6 +405,9 @@ fn take_row<'m>(rows: &mut [Option<&'m mut [u16]>], k: Option<usize>) -> &'m mut
         .and_then(Option::take)
         .unwrap_or_default()
 }
+
+/// The most render threads [`Fbi::set_threads`] takes.
+pub const MAX_THREADS: usize = 256;
 
 /// Rows per band of the threaded walk.
 const BAND_ROWS: usize = 4;

@@ -178,12 +178,12 @@ sst1_result sst1_set_model(sst1_board *board, sst1_model model);
 /* Stores the model the chips run in *model. */
 sst1_result sst1_get_model(const sst1_board *board, sst1_model *model);
 
-/* Sets how many threads the board may render on: 0 lets the library choose, 1 to
- * SST1_MAX_RENDER_THREADS asks for that many (more is SST1_ERR_BAD_ARGUMENT). The
- * setting is kept and sst1_get_render_threads returns it, but this version renders
- * every command on the calling thread, inside the write that starts it, whatever the
- * setting: the output is the same either way, and will stay so when the board renders
- * in parallel. */
+/* Sets how many threads the board may render on: 0 lets the library choose (the
+ * machine's cores), 1 to SST1_MAX_RENDER_THREADS asks for that many (more is
+ * SST1_ERR_BAD_ARGUMENT); sst1_get_render_threads returns the setting. Until it is
+ * called the board renders on the calling thread. Every command still completes inside
+ * the write that starts it; the rows of a large untextured triangle are shaded in bands
+ * on that many threads meanwhile. The output is the same for every setting. */
 sst1_result sst1_set_render_threads(sst1_board *board, uint32_t threads);
 
 /* Stores the setting of sst1_set_render_threads in *threads (0 until it is called). */

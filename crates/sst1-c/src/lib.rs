@@ -521,8 +521,14 @@ pub unsafe extern "C" fn sst1_set_render_threads(board: *mut Sst1Board, threads:
         if threads > MAX_RENDER_THREADS {
             return Err(Error::BadArgument);
         }
-        // Kept for the host to read back; the board renders on the calling thread.
-        b.lock().render_threads = threads;
+        let mut inner = b.lock();
+        inner.render_threads = threads;
+        let n = if threads == 0 {
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        } else {
+            threads as usize
+        };
+        inner.board.set_threads(n);
         Ok(())
     })
 }
