@@ -22,8 +22,6 @@
 use serde::{Deserialize, Serialize};
 use sst1_regs::{AlphaMode, BlendFactor, FbzMode, Rgba};
 
-use crate::span::{Lanes, LANES};
-
 /// How the blend is computed: destination widening, dither subtraction, factor scale and
 /// rounding. `Mame`, `Dosbox` and `Exact255` each reproduce one reference's arithmetic as
 /// a whole; `PerProduct` (the hardware model's) takes each of the three choices as two
@@ -378,43 +376,43 @@ fn blend_rgb(
 }
 
 /// [`alpha_blend`]'s inputs for every lane of a chunk of a span ([`crate::span`]).
-pub struct BlendLanes<'a> {
+pub struct BlendLanes<'a, const L: usize> {
     /// The fogged colour, R, G, B, A.
-    pub src: &'a [Lanes; 4],
+    pub src: &'a [[i32; L]; 4],
     /// The colour before fog, R, G, B (A unused).
-    pub prefog: &'a [Lanes; 4],
+    pub prefog: &'a [[i32; L]; 4],
     /// The destination RGB565 word (0 where the lane has none).
-    pub dst_rgb565: &'a Lanes,
+    pub dst_rgb565: &'a [i32; L],
     /// The aux word, where `has_aux`.
-    pub dst_aux: &'a Lanes,
+    pub dst_aux: &'a [i32; L],
     /// Whether the lane has an aux word.
-    pub has_aux: &'a [bool; LANES],
+    pub has_aux: &'a [bool; L],
     /// The dither matrix entry at the lane's pixel.
-    pub dither_value: &'a Lanes,
+    pub dither_value: &'a [i32; L],
 }
 
 /// [`factor`] for every lane, `code` chosen once.
 #[inline(always)]
-fn factor_lanes(
+fn factor_lanes<const L: usize>(
     code: BlendFactor,
-    sa: &Lanes,
-    da: &Lanes,
-    other: &Lanes,
-    fifteen: &Lanes,
+    sa: &[i32; L],
+    da: &[i32; L],
+    other: &[i32; L],
+    fifteen: &[i32; L],
     (one, plus): (i32, i32),
-) -> Lanes {
+) -> [i32; L] {
     use core::array::from_fn;
     match code {
-        BlendFactor::Zero => [0; LANES],
+        BlendFactor::Zero => [0; L],
         BlendFactor::SrcAlpha => from_fn(|i| sa[i] + plus),
         BlendFactor::Color => from_fn(|i| other[i] + plus),
         BlendFactor::DstAlpha => from_fn(|i| da[i] + plus),
-        BlendFactor::One => [one; LANES],
+        BlendFactor::One => [one; L],
         BlendFactor::OneMinusSrcAlpha => from_fn(|i| one - sa[i]),
         BlendFactor::OneMinusColor => from_fn(|i| one - other[i]),
         BlendFactor::OneMinusDstAlpha => from_fn(|i| one - da[i]),
         BlendFactor::SaturateOrColorBeforeFog => from_fn(|i| fifteen[i] + plus),
-        _ => [0; LANES], // reserved 8..=14
+        _ => [0; L], // reserved 8..=14
     }
 }
 
@@ -422,12 +420,12 @@ fn factor_lanes(
 /// its choices made once, into `out` (R, G, B, A). Lanes without a pixel compute
 /// harmless garbage.
 #[inline(always)]
-pub fn alpha_blend_lanes(
+pub fn alpha_blend_lanes<const L: usize>(
     alpha_mode: AlphaMode,
     fbz_mode: FbzMode,
-    input: &BlendLanes<'_>,
+    input: &BlendLanes<'_, L>,
     profile: BlendProfile,
-    out: &mut [Lanes; 4],
+    out: &mut [[i32; L]; 4],
 ) {
     use core::array::from_fn;
     let arith = profile.arithmetic;
@@ -441,13 +439,13 @@ pub fn alpha_blend_lanes(
     // Destination colour and alpha (see `widen`).
     let p = input.dst_rgb565;
     let rep = |v: i32, shift: i32| if replicate { v | v >> shift } else { v };
-    let mut d: [Lanes; 3] = [
+    let mut d: [[i32; L]; 3] = [
         from_fn(|i| rep((p[i] >> 8) & 0xf8, 5)),
         from_fn(|i| rep((p[i] >> 3) & 0xfc, 6)),
         from_fn(|i| rep((p[i] << 3) & 0xf8, 5)),
     ];
     let planes = fbz_mode.enable_alpha_planes();
-    let da: Lanes = from_fn(|i| match (planes, input.has_aux[i]) {
+    let da: [i32; L] = from_fn(|i| match (planes, input.has_aux[i]) {
         (true, true) if arith == BlendArithmetic::Exact255 => input.dst_aux[i] & 0xff,
         (true, true) => input.dst_aux[i],
         _ => 0xff,
@@ -459,7 +457,7 @@ pub fn alpha_blend_lanes(
             BlendArithmetic::PerProduct | BlendArithmetic::Mame | BlendArithmetic::Dosbox
                 if fbz_mode.enable_dithering() =>
             {
-                for i in 0..LANES {
+                for i in 0..L {
                     let k = 15 - dv[i];
                     d[0][i] += k >> 1;
                     d[1][i] += k >> 2;
@@ -467,7 +465,7 @@ pub fn alpha_blend_lanes(
                 }
             }
             BlendArithmetic::Exact255 => {
-                for i in 0..LANES {
+                for i in 0..L {
                     d[0][i] = dither_sub_86box(d[0][i], (10 - dv[i]) >> 1, 4);
                     d[1][i] = dither_sub_86box(d[1][i], (12 - dv[i]) >> 2, 2);
                     d[2][i] = dither_sub_86box(d[2][i], (10 - dv[i]) >> 1, 4);
@@ -479,7 +477,7 @@ pub fn alpha_blend_lanes(
 
     let s = input.src;
     let sa = &s[3];
-    let saturate: Lanes = from_fn(|i| sa[i].min(one - da[i]));
+    let saturate: [i32; L] = from_fn(|i| sa[i].min(one - da[i]));
     let src_code = alpha_mode.src_rgb_blend();
     let dst_code = alpha_mode.dst_rgb_blend();
     let saturate_dst = src_code == BlendFactor::SaturateOrColorBeforeFog

@@ -23,8 +23,6 @@ use serde::{Deserialize, Serialize};
 use sst1_fog::FogTable;
 use sst1_regs::{FogMode, FogZa, Rgba};
 
-use crate::span::{Lanes, LANES};
-
 /// What happens to the scaled fog difference `(F * (Afog + 1)) >> 8` before it is added
 /// back to the colour.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -222,17 +220,17 @@ pub fn apply_fog(
 }
 
 /// [`apply_fog`]'s per-pixel inputs for every lane of a chunk of a span ([`crate::span`]).
-pub struct FogLanes<'a> {
+pub struct FogLanes<'a, const L: usize> {
     /// The colour-combine output, R, G, B, A.
-    pub color: &'a [Lanes; 4],
+    pub color: &'a [[i32; L]; 4],
     /// The clamped iterated alpha.
-    pub alpha: &'a Lanes,
+    pub alpha: &'a [i32; L],
     /// The clamped 16-bit iterated Z.
-    pub z: &'a Lanes,
+    pub z: &'a [i32; L],
     /// The iterated W of lane `i`.
     pub w: &'a dyn Fn(usize) -> i64,
     /// The 16-bit floating-point W.
-    pub wfloat: &'a Lanes,
+    pub wfloat: &'a [i32; L],
     /// The depth bias (`zaColor`), when enabled.
     pub depth_bias: Option<i16>,
 }
@@ -240,13 +238,13 @@ pub struct FogLanes<'a> {
 /// [`apply_fog`] (with fog enabled) for every lane at once: the same arithmetic, its
 /// choices made once, into `out` (R, G, B, A).
 #[inline(always)]
-pub fn apply_fog_lanes(
+pub fn apply_fog_lanes<const L: usize>(
     mode: FogMode,
     fog_color: Rgba,
     table: &FogTable,
-    input: &FogLanes<'_>,
+    input: &FogLanes<'_, L>,
     profile: FogProfile,
-    out: &mut [Lanes; 4],
+    out: &mut [[i32; L]; 4],
 ) {
     use core::array::from_fn;
     let cin = input.color;
@@ -261,13 +259,13 @@ pub fn apply_fog_lanes(
             out[c] = if add {
                 from_fn(|i| (base[i] + f).clamp(0, 255))
             } else {
-                [f.clamp(0, 255); LANES]
+                [f.clamp(0, 255); L]
             };
         }
         return;
     }
     // Afog + 1 per lane (see `fog_alpha`).
-    let factor: Lanes = match mode.fog_za() {
+    let factor: [i32; L] = match mode.fog_za() {
         FogZa::FogTable => {
             let biased = profile.table_depth == FogTableDepth::BiasedWfloat;
             from_fn(|i| {
@@ -280,7 +278,7 @@ pub fn apply_fog_lanes(
         }
         FogZa::IteratedAlpha => match profile.iterated_alpha {
             FogIteratedAlpha::Clamped => from_fn(|i| input.alpha[i] + 1),
-            FogIteratedAlpha::MameLowByte => [1; LANES],
+            FogIteratedAlpha::MameLowByte => [1; L],
         },
         FogZa::IteratedZ => from_fn(|i| (input.z[i] >> 8) + 1),
         FogZa::IteratedZAndAlpha => match profile.both_sources {

@@ -9,7 +9,7 @@ use crate::iter::Iterated;
 use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::StippleRotate;
-use crate::span::{ChunkAt, Lanes, Memory, Shader, TriangleLanes, Words, LANES};
+use crate::span::{chunk_len, ChunkAt, Lanes, Memory, Shader, TriangleConsts, Words, LANES};
 use crate::stats::Stats;
 use crate::{box86, setup};
 
@@ -156,7 +156,7 @@ impl Fbi {
             && mode.enable_stipple()
             && !mode.enable_stipple_pattern();
         let mut copy = per_triangle.then(|| box86::StippleCopy::new(st.stipple));
-        let consts = SPANS.then(|| TriangleLanes::new(st));
+        let consts = SPANS.then(|| TriangleConsts::new(st));
         // Bands need rows that depend on nothing but themselves: no texel source (its
         // caches have state) and no per-triangle stipple copy (stepped row by row).
         let threaded = SPANS
@@ -217,7 +217,7 @@ impl Fbi {
         (ax, ay): (i32, i32),
         copy: &mut Option<box86::StippleCopy>,
         tex: &mut T,
-        consts: Option<&TriangleLanes>,
+        consts: Option<&TriangleConsts>,
     ) {
         let Row {
             y,
@@ -236,7 +236,7 @@ impl Fbi {
         if let Some(consts) = consts {
             let mut x0 = start;
             while x0 < stop {
-                let n = ((stop - x0) as usize).min(LANES);
+                let n = chunk_len((stop - x0) as usize);
                 let at = ChunkAt {
                     x0,
                     n,
@@ -270,7 +270,7 @@ impl Fbi {
                         params: &self.params,
                         profile: self.profile,
                     };
-                    shader.shade_chunk::<M, T>(
+                    shader.shade_chunk_of::<M, T>(
                         st,
                         &at,
                         &it,
@@ -320,7 +320,7 @@ impl Fbi {
         st: &DrawState,
         rows: &[Row],
         a: (i32, i32),
-        consts: &TriangleLanes,
+        consts: &TriangleConsts,
     ) -> bool {
         let row_pixels = self.fb.layout.row_pixels as usize;
         let pixels: usize = rows.iter().map(|r| (r.stop - r.start) as usize).sum();
@@ -442,7 +442,7 @@ fn shade_band<M: PixelModel>(
     st: &DrawState,
     band: Vec<BandRow<'_>>,
     a: (i32, i32),
-    consts: &TriangleLanes,
+    consts: &TriangleConsts,
 ) {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
@@ -461,7 +461,7 @@ fn shade_band_avx2<M: PixelModel>(
     st: &DrawState,
     band: Vec<BandRow<'_>>,
     a: (i32, i32),
-    consts: &TriangleLanes,
+    consts: &TriangleConsts,
 ) {
     shade_band_rows::<M>(shader, st, band, a, consts);
 }
@@ -474,7 +474,7 @@ fn shade_band_rows<M: PixelModel>(
     st: &DrawState,
     band: Vec<BandRow<'_>>,
     (ax, ay): (i32, i32),
-    consts: &TriangleLanes,
+    consts: &TriangleConsts,
 ) {
     for BandRow { row, colour, aux } in band {
         let dy = row.y - ay;
@@ -483,7 +483,7 @@ fn shade_band_rows<M: PixelModel>(
         let mut memory = Memory::Rows { colour, aux };
         let mut x0 = row.start;
         while x0 < row.stop {
-            let n = ((row.stop - x0) as usize).min(LANES);
+            let n = chunk_len((row.stop - x0) as usize);
             let at = ChunkAt {
                 x0,
                 n,
@@ -499,7 +499,7 @@ fn shade_band_rows<M: PixelModel>(
                 Words::in_row(colour_len, x0, n),
                 Words::in_row(aux_len, x0, n),
             );
-            shader.shade_chunk::<M, NoTexture>(
+            shader.shade_chunk_of::<M, NoTexture>(
                 st,
                 &at,
                 &it,

@@ -130,20 +130,20 @@ pub(crate) struct ChunkAt {
 
 /// The three 8-bit channels and alpha of a colour for every lane.
 #[derive(Clone, Copy)]
-struct ColourLanes {
-    c: [Lanes; 4],
+struct ColourLanes<const L: usize> {
+    c: [[i32; L]; 4],
 }
 
-impl ColourLanes {
-    const ZERO: ColourLanes = ColourLanes { c: [[0; LANES]; 4] };
+impl<const L: usize> ColourLanes<L> {
+    const ZERO: ColourLanes<L> = ColourLanes { c: [[0; L]; 4] };
 
     fn splat(v: Rgba) -> Self {
         Self {
             c: [
-                [v.r as i32; LANES],
-                [v.g as i32; LANES],
-                [v.b as i32; LANES],
-                [v.a as i32; LANES],
+                [v.r as i32; L],
+                [v.g as i32; L],
+                [v.b as i32; L],
+                [v.a as i32; L],
             ],
         }
     }
@@ -151,32 +151,74 @@ impl ColourLanes {
 
 /// What every chunk of a triangle reads and no stage changes: the constant colours
 /// spread over the lanes, built once per triangle.
-pub(crate) struct TriangleLanes {
-    color0: ColourLanes,
-    color1: ColourLanes,
+pub(crate) struct TriangleLanes<const L: usize> {
+    color0: ColourLanes<L>,
+    color1: ColourLanes<L>,
     /// `zaColor`'s depth (the depth test's source with `fbzMode` bit 20).
-    za_depth: Lanes,
-    zero: Lanes,
-    zero_colour: ColourLanes,
+    za_depth: [i32; L],
+    zero: [i32; L],
+    zero_colour: ColourLanes<L>,
 }
 
-impl TriangleLanes {
+impl<const L: usize> TriangleLanes<L> {
     pub(crate) fn new(st: &DrawState) -> Self {
         Self {
             color0: ColourLanes::splat(st.color0),
             color1: ColourLanes::splat(st.color1),
-            za_depth: [(st.za_color & 0xffff) as i32; LANES],
-            zero: [0; LANES],
+            za_depth: [(st.za_color & 0xffff) as i32; L],
+            zero: [0; L],
             zero_colour: ColourLanes::ZERO,
         }
     }
 }
 
+/// Lanes of the narrow chunks that short spans are shaded in: the loops of a chunk run
+/// over all its lanes, so a 3-pixel span costs a narrow chunk's work, not a wide one's.
+pub const NARROW: usize = 8;
+
+/// A span's pixels from here on go in one wide chunk when at least this many are left
+/// (fewer run as narrow chunks).
+const WIDE_FROM: usize = 40;
+
+/// The constants of [`TriangleLanes`] for both chunk widths; the wide ones are built
+/// when a chunk first needs them (a small triangle has none).
+pub(crate) struct TriangleConsts {
+    st: DrawState,
+    wide: std::sync::OnceLock<Box<TriangleLanes<LANES>>>,
+    narrow: TriangleLanes<NARROW>,
+}
+
+impl TriangleConsts {
+    pub(crate) fn new(st: &DrawState) -> Self {
+        Self {
+            st: *st,
+            wide: std::sync::OnceLock::new(),
+            narrow: TriangleLanes::new(st),
+        }
+    }
+
+    #[inline(always)]
+    fn wide(&self) -> &TriangleLanes<LANES> {
+        self.wide
+            .get_or_init(|| Box::new(TriangleLanes::new(&self.st)))
+    }
+}
+
+/// The pixels of the next chunk of a span with `left` pixels left.
+#[inline(always)]
+pub(crate) fn chunk_len(left: usize) -> usize {
+    if left >= WIDE_FROM {
+        left.min(LANES)
+    } else {
+        left.min(NARROW)
+    }
+}
+
 /// Kill the live lanes of `alive` for which `fails` holds, counting each as `kill`.
 #[inline(always)]
-fn kill_where(
+fn kill_where<const L: usize>(
     stats: &mut Stats,
-    alive: &mut [bool; LANES],
+    alive: &mut [bool; L],
     n: usize,
     kill: Kill,
     fails: impl Fn(usize) -> bool,
@@ -196,16 +238,16 @@ fn kill_where(
 /// one channel of a combine unit (see [`crate::color_path::combine`]), its selections
 /// made by the caller.
 #[inline(always)]
-fn combine_channel(
-    out: &mut Lanes,
-    other: &Lanes,
-    sub: &Lanes,
-    factor: &Lanes,
-    add: &Lanes,
+fn combine_channel<const L: usize>(
+    out: &mut [i32; L],
+    other: &[i32; L],
+    sub: &[i32; L],
+    factor: &[i32; L],
+    add: &[i32; L],
     xor: i32,
     invert: i32,
 ) {
-    for i in 0..LANES {
+    for i in 0..L {
         let v = ((other[i] - sub[i]) * ((factor[i] ^ xor) + 1)) >> 8;
         out[i] = (v + add[i]).clamp(0, 255) ^ invert;
     }
@@ -255,14 +297,11 @@ pub(crate) struct Shader<'a> {
 }
 
 impl Shader<'_> {
-    /// Shade one chunk of a span: every stage of [`Fbi::shade_pixel`], a stage at a time.
-    /// `it` holds the iterators at the chunk's first pixel; `stipple_state` is the row's
-    /// rotating stipple register and `copy` 86Box's per-triangle stipple copy, as in the
-    /// walker. `dest_words` and `aux_words` locate the lanes in `mem`; the caller has
-    /// checked that they do not cross ([`Words::crosses`]).
+    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `at.n` asks
+    /// ([`chunk_len`]).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource>(
+    pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource>(
         &mut self,
         st: &DrawState,
         at: &ChunkAt,
@@ -270,12 +309,58 @@ impl Shader<'_> {
         stipple_state: &mut u32,
         copy: Option<&crate::box86::StippleCopy>,
         tex: &mut T,
-        consts: &TriangleLanes,
+        consts: &TriangleConsts,
+        mem: &mut Memory<'_>,
+        words: (Words, Words),
+    ) {
+        if at.n > NARROW {
+            self.shade_chunk::<M, T, LANES>(
+                st,
+                at,
+                it,
+                stipple_state,
+                copy,
+                tex,
+                consts.wide(),
+                mem,
+                words,
+            );
+        } else {
+            self.shade_chunk::<M, T, NARROW>(
+                st,
+                at,
+                it,
+                stipple_state,
+                copy,
+                tex,
+                &consts.narrow,
+                mem,
+                words,
+            );
+        }
+    }
+
+    /// Shade one chunk of a span: every stage of [`Fbi::shade_pixel`], a stage at a time.
+    /// `it` holds the iterators at the chunk's first pixel; `stipple_state` is the row's
+    /// rotating stipple register and `copy` 86Box's per-triangle stipple copy, as in the
+    /// walker. `dest_words` and `aux_words` locate the lanes in `mem`; the caller has
+    /// checked that they do not cross ([`Words::crosses`]).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource, const L: usize>(
+        &mut self,
+        st: &DrawState,
+        at: &ChunkAt,
+        it: &Iterated,
+        stipple_state: &mut u32,
+        copy: Option<&crate::box86::StippleCopy>,
+        tex: &mut T,
+        consts: &TriangleLanes<L>,
         mem: &mut Memory<'_>,
         (dest_words, aux_words): (Words, Words),
     ) {
         let n = at.n;
-        debug_assert!((1..=LANES).contains(&n));
+        debug_assert!((1..=L).contains(&n) && L <= LANES);
         let mode = st.mode;
         self.counts.span_kernels += n as u64;
         let profile = M::pixel(&self.profile);
@@ -284,7 +369,7 @@ impl Shader<'_> {
         let fog_mode = st.fog_mode;
         let p = self.params;
         let zero = &consts.zero;
-        let mut alive = [false; LANES];
+        let mut alive = [false; L];
         alive[..n].fill(true);
 
         // --- stipple ---
@@ -304,18 +389,18 @@ impl Shader<'_> {
 
         // --- iterators, depth value and test ---
         let clamp = profile.iterator_clamp;
-        let z16: Lanes = core::array::from_fn(|i| {
+        let z16: [i32; L] = core::array::from_fn(|i| {
             clamp.z(it.z.wrapping_add(p.dzdx.wrapping_mul(i as i32))) as i32
         });
         let w_at = |i: usize| it.w.wrapping_add(p.dwdx.wrapping_mul(i as i64));
-        let wf: Lanes = if mode.wbuffer_select() || fog_mode.enable_fog() {
+        let wf: [i32; L] = if mode.wbuffer_select() || fog_mode.enable_fog() {
             core::array::from_fn(|i| wfloat(w_at(i), profile.wfloat) as i32)
         } else {
             *zero
         };
         let bias = mode.enable_depth_bias().then_some(st.za_color as u16);
         let unbiased = if mode.wbuffer_select() { &wf } else { &z16 };
-        let depth: Lanes = match bias {
+        let depth: [i32; L] = match bias {
             Some(b) => {
                 let b = b as i16 as i32;
                 core::array::from_fn(|i| (unbiased[i] + b).clamp(0, 0xffff))
@@ -324,14 +409,14 @@ impl Shader<'_> {
         };
         if mode.enable_depthbuffer() {
             let func = mode.depth_function();
-            let source: &Lanes = if mode.depth_source_compare() {
+            let source: &[i32; L] = if mode.depth_source_compare() {
                 &consts.za_depth
             } else {
                 &depth
             };
             // Without an aux buffer only "never" can fail (MAME, DOSBox Staging).
             let no_aux_fails = func == DepthFunction::Never;
-            let mut fails = [no_aux_fails; LANES];
+            let mut fails = [no_aux_fails; L];
             let w = aux_words;
             let ram = &mem.aux()[w.first..w.first + (w.hi - w.lo)];
             for (f, (s, d)) in fails[w.lo..w.hi]
@@ -344,16 +429,23 @@ impl Shader<'_> {
         }
 
         // --- colour selection ---
-        let texel_store: ColourLanes;
-        let texel: &ColourLanes = if cp.texture_enable() && st.fetch_texel {
+        let texel_store: ColourLanes<L>;
+        let texel: &ColourLanes<L> = if cp.texture_enable() && st.fetch_texel {
             let mut t = ColourLanes::ZERO;
-            tex.texels(at.x0 - at.ax, at.dy, at.x0, at.y, &alive, n, &mut t.c);
+            // The texel source takes the widest chunk; a narrower one uses its first lanes.
+            let mut wide_alive = [false; LANES];
+            wide_alive[..L].copy_from_slice(&alive);
+            let mut wide = [[0; LANES]; 4];
+            tex.texels(at.x0 - at.ax, at.dy, at.x0, at.y, &wide_alive, n, &mut wide);
+            for (lanes, w) in t.c.iter_mut().zip(&wide) {
+                lanes.copy_from_slice(&w[..L]);
+            }
             texel_store = t;
             &texel_store
         } else {
             &consts.zero_colour
         };
-        let iterated = ColourLanes {
+        let iterated = ColourLanes::<L> {
             c: core::array::from_fn(|c| {
                 let (s, d) = (it.argb[c], p.dx[c]);
                 core::array::from_fn(|i| {
@@ -362,13 +454,13 @@ impl Shader<'_> {
             }),
         };
         let (color0, color1) = (&consts.color0, &consts.color1);
-        let other_rgb: [&Lanes; 3] = match cp.cc_rgbselect() {
+        let other_rgb: [&[i32; L]; 3] = match cp.cc_rgbselect() {
             RgbSelect::IteratedRgb => [&iterated.c[0], &iterated.c[1], &iterated.c[2]],
             RgbSelect::Texture => [&texel.c[0], &texel.c[1], &texel.c[2]],
             RgbSelect::Color1 => [&color1.c[0], &color1.c[1], &color1.c[2]],
             _ => [zero; 3],
         };
-        let other_a: &Lanes = match cp.cc_aselect() {
+        let other_a: &[i32; L] = match cp.cc_aselect() {
             AlphaSelect::IteratedAlpha => &iterated.c[3],
             AlphaSelect::Texture => &texel.c[3],
             AlphaSelect::Color1 => &color1.c[3],
@@ -402,10 +494,10 @@ impl Shader<'_> {
         }
 
         // --- local selection ---
-        let local_rgb_store: ColourLanes;
-        let local_rgb: [&Lanes; 3] = if cp.cc_localselect_override() {
+        let local_rgb_store: ColourLanes<L>;
+        let local_rgb: [&[i32; L]; 3] = if cp.cc_localselect_override() {
             // Texture alpha bit 7 chooses color0 instead of the iterated colour.
-            local_rgb_store = ColourLanes {
+            local_rgb_store = ColourLanes::<L> {
                 c: core::array::from_fn(|c| {
                     core::array::from_fn(|i| {
                         if texel.c[3][i] & 0x80 != 0 {
@@ -426,8 +518,8 @@ impl Shader<'_> {
         } else {
             [&iterated.c[0], &iterated.c[1], &iterated.c[2]]
         };
-        let z_alpha: Lanes;
-        let local_a: &Lanes = match cp.cca_localselect() {
+        let z_alpha: [i32; L];
+        let local_a: &[i32; L] = match cp.cca_localselect() {
             AlphaLocalSelect::IteratedAlpha => &iterated.c[3],
             AlphaLocalSelect::Color0 => &color0.c[3],
             AlphaLocalSelect::IteratedZ => {
@@ -458,7 +550,7 @@ impl Shader<'_> {
         }
 
         // --- fog ---
-        let fogged_store: ColourLanes;
+        let fogged_store: ColourLanes<L>;
         let fogged = if fog_mode.enable_fog() {
             let input = fog::FogLanes {
                 color: &combined.c,
@@ -484,12 +576,12 @@ impl Shader<'_> {
         };
 
         // --- alpha blend ---
-        let blended: ColourLanes;
+        let blended: ColourLanes<L>;
         let out = if am.alpha_blend_enable() {
             let (dst_rgb565, _) = load_words(mem.colour(), dest_words);
             let (dst_aux, has_aux) = load_words(mem.aux(), aux_words);
             let dither = self.dither;
-            let dither_value: Lanes = core::array::from_fn(|i| {
+            let dither_value: [i32; L] = core::array::from_fn(|i| {
                 let x = (at.x0 + i as i32) as u32;
                 dither.matrix_value(st.dither_matrix, x, at.prow as u32) as i32
             });
@@ -512,7 +604,7 @@ impl Shader<'_> {
         // --- write ---
         if mode.rgb_buffer_mask() {
             let w = dest_words;
-            let mut packed = [0u16; LANES];
+            let mut packed = [0u16; L];
             self.dither.rgb565_row(
                 st.dither,
                 at.x0 as u32,
@@ -526,7 +618,7 @@ impl Shader<'_> {
             let planes = mode.enable_alpha_planes();
             let w = aux_words;
             let value = if planes { &out.c[3] } else { &depth };
-            let value: [u16; LANES] = core::array::from_fn(|i| value[i] as u16);
+            let value: [u16; L] = core::array::from_fn(|i| value[i] as u16);
             store_alive(mem.aux(), w, &alive, &value);
         }
         let out_count: u32 = alive[..n].iter().map(|a| *a as u32).sum();
@@ -573,7 +665,7 @@ impl Fbi {
 
 /// Write `values[i]` to the word of every live lane `i` that has one.
 #[inline(always)]
-fn store_alive(ram: &mut [u16], w: Words, alive: &[bool; LANES], values: &[u16; LANES]) {
+fn store_alive<const L: usize>(ram: &mut [u16], w: Words, alive: &[bool; L], values: &[u16; L]) {
     let dst = &mut ram[w.first..w.first + (w.hi - w.lo)];
     let lanes = alive[w.lo..w.hi].iter().zip(&values[w.lo..w.hi]);
     for (d, (a, v)) in dst.iter_mut().zip(lanes) {
@@ -583,9 +675,9 @@ fn store_alive(ram: &mut [u16], w: Words, alive: &[bool; LANES], values: &[u16; 
 
 /// The words of the lanes `w` covers, as lanes (0 elsewhere), and which lanes have one.
 #[inline(always)]
-fn load_words(ram: &[u16], w: Words) -> (Lanes, [bool; LANES]) {
-    let mut v = [0; LANES];
-    let mut has = [false; LANES];
+fn load_words<const L: usize>(ram: &[u16], w: Words) -> ([i32; L], [bool; L]) {
+    let mut v = [0; L];
+    let mut has = [false; L];
     let src = &ram[w.first..w.first + (w.hi - w.lo)];
     for ((v, h), word) in v[w.lo..w.hi].iter_mut().zip(&mut has[w.lo..w.hi]).zip(src) {
         *v = *word as i32;
@@ -609,15 +701,15 @@ pub(crate) fn aux_enabled(mode: FbzMode, aux_write: AuxWrite) -> bool {
 /// their selections (spec 5.16) made once.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn combine_units(
+fn combine_units<const L: usize>(
     cp: FbzColorPath,
-    other_rgb: [&Lanes; 3],
-    other_a: &Lanes,
-    local_rgb: [&Lanes; 3],
-    local_a: &Lanes,
-    texel_a: &Lanes,
-    zero: &Lanes,
-) -> ColourLanes {
+    other_rgb: [&[i32; L]; 3],
+    other_a: &[i32; L],
+    local_rgb: [&[i32; L]; 3],
+    local_a: &[i32; L],
+    texel_a: &[i32; L],
+    zero: &[i32; L],
+) -> ColourLanes<L> {
     let mut out = ColourLanes::ZERO;
     // --- colour ---
     let xor = if cp.cc_reverse_blend() { 0 } else { 0xff };
