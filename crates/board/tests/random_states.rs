@@ -26,8 +26,18 @@ use sst1_regs::{addr, map};
 use sst1_trace::scenes::{random_states, RandomStates};
 use sst1_trace::{execute, read_trace, Trace, TraceOp};
 
-/// The scenes: (seed, TMUs). Two of each TMU count; 300 states of two triangles each.
-const SCENES: &[(u64, u32)] = &[(1, 1), (2, 2), (3, 3), (4, 1), (5, 2), (6, 3)];
+/// The scenes: (seed, TMUs). Three of each TMU count; 300 states of two triangles each.
+const SCENES: &[(u64, u32)] = &[
+    (1, 1),
+    (2, 2),
+    (3, 3),
+    (4, 1),
+    (5, 2),
+    (6, 3),
+    (7, 1),
+    (8, 2),
+    (9, 3),
+];
 const STATES: u32 = 300;
 
 fn scene(seed: u64, tmus: u32) -> Trace {
@@ -37,6 +47,8 @@ fn scene(seed: u64, tmus: u32) -> Trace {
         states: STATES,
         triangles_per_state: 2,
         dump_every: 50,
+        // A random frame-buffer layout in every third scene.
+        layout: seed % 3 == 0,
     });
     read_trace(&format!("random_states seed {seed}"), text.as_bytes())
         .unwrap_or_else(|e| panic!("{e}"))

@@ -11,7 +11,9 @@
 //!   `textureMode` and `tLOD` the TMU uses, `tDetail` and the base addresses, with random texture contents downloaded through
 //!   the texture aperture for the layout in force, random NCC tables and palette, fog
 //!   table, chroma key, `zaColor`, stipple, constant colours and clip rectangle, over
-//!   colour and aux buffers filled with random rectangles and noise. Reserved values
+//!   colour and aux buffers filled with random rectangles and noise; a fifth of the
+//!   triangles through the float registers, and now and then LFB writes through the
+//!   pixel pipeline in the state in force. Reserved values
 //!   are kept: the emulator must handle them.
 //!
 //! A scene is a function of its parameters alone (an xorshift generator seeded from
@@ -240,6 +242,9 @@ struct Sends {
     w: bool,
     /// S, T, W for this many TMUs (0: none).
     tmus: u32,
+    /// Through the floating-point registers and `ftriangleCMD` (spec 5.2: converted to
+    /// the fixed formats on write) instead of the fixed-point ones.
+    float: bool,
 }
 
 /// Writes one triangle: vertices snapped to 12.4 and sorted by Y, start values at vertex
@@ -253,7 +258,16 @@ fn triangle(scene: &mut Scene, mut v: [Vertex; 3], sends: Sends) {
     v.sort_by(|a, b| a.y.total_cmp(&b.y));
     let [a, b, c] = &v;
     let area = (a.x - b.x) * (b.y - c.y) - (b.x - c.x) * (a.y - b.y);
-    for (reg, value) in [
+    // The float registers lie 0x80 above their fixed twins (spec 5, register table).
+    let float = if sends.float { 0x80 } else { 0 };
+    let value = |v: f64, frac: u32| {
+        if sends.float {
+            (v as f32).to_bits()
+        } else {
+            fixed(v, frac)
+        }
+    };
+    for (reg, v) in [
         (addr::VERTEX_AX, a.x),
         (addr::VERTEX_AY, a.y),
         (addr::VERTEX_BX, b.x),
@@ -261,14 +275,19 @@ fn triangle(scene: &mut Scene, mut v: [Vertex; 3], sends: Sends) {
         (addr::VERTEX_CX, c.x),
         (addr::VERTEX_CY, c.y),
     ] {
-        scene.w(reg, fixed(value, 4) & 0xffff);
+        let bits = if sends.float {
+            value(v, 4)
+        } else {
+            fixed(v, 4) & 0xffff
+        };
+        scene.w(reg + float, bits);
     }
     let param =
         |scene: &mut Scene, regs: [u32; 3], chip: u32, frac: u32, p: &dyn Fn(&Vertex) -> f64| {
             let (start, dx, dy) = plane(&v, p);
-            scene.w(regs[0] | chip, fixed(start, frac));
-            scene.w(regs[1] | chip, fixed(dx, frac));
-            scene.w(regs[2] | chip, fixed(dy, frac));
+            scene.w((regs[0] + float) | chip, value(start, frac));
+            scene.w((regs[1] + float) | chip, value(dx, frac));
+            scene.w((regs[2] + float) | chip, value(dy, frac));
         };
     let colour = [
         [addr::START_R, addr::D_R_DX, addr::D_R_DY],
@@ -323,8 +342,12 @@ fn triangle(scene: &mut Scene, mut v: [Vertex; 3], sends: Sends) {
             &|p| p.st[tmu][2],
         );
     }
-    let sign = if area < 0.0 { 0x8000_0000 } else { 0 };
-    scene.w(addr::TRIANGLE_CMD, sign);
+    if sends.float {
+        scene.w(addr::F_TRIANGLE_CMD, (area as f32).to_bits());
+    } else {
+        let sign = if area < 0.0 { 0x8000_0000 } else { 0 };
+        scene.w(addr::TRIANGLE_CMD, sign);
+    }
 }
 
 /// Three vertices around a random point of the screen enclosing about `area` pixels:
@@ -398,6 +421,7 @@ pub fn small_triangles(seed: u64, count: u32, textured: bool) -> String {
         za: false,
         w: false,
         tmus: u32::from(textured),
+        float: false,
     };
     for _ in 0..count {
         let mut v = small_triangle_at(&mut rng, 10.0);
@@ -433,6 +457,10 @@ pub struct RandomStates {
     pub triangles_per_state: u32,
     /// A dump of every buffer after this many states (0: only at the end).
     pub dump_every: u32,
+    /// A random frame-buffer layout after Glide's mode set: `fbiInit1` tiles in X
+    /// (the row pitch) and `fbiInit2` buffer offset at random, so that buffers may
+    /// overlap (one buffer's colour word another's aux word) and rows wrap.
+    pub layout: bool,
 }
 
 impl Default for RandomStates {
@@ -443,6 +471,7 @@ impl Default for RandomStates {
             states: 200,
             triangles_per_state: 2,
             dump_every: 50,
+            layout: false,
         }
     }
 }
@@ -463,6 +492,19 @@ pub fn random_states(p: RandomStates) -> String {
         ),
         tmus,
     );
+    if p.layout {
+        let tiles = rng.below(16);
+        let offset = rng.below(512);
+        let _ = writeln!(
+            scene.text,
+            "# frame buffer layout: {tiles} tiles in X, buffer offset {offset} pages"
+        );
+        scene.w(addr::FBI_INIT1, (0x0020_00a2 & !0xf0) | (tiles << 4));
+        scene.w(
+            addr::FBI_INIT2,
+            (0x1874_b040 & !(0x1ff << 11)) | (offset << 11),
+        );
+    }
     palette_and_ncc(&mut scene, &mut rng, tmus, true);
     fog_table(&mut scene, &mut rng);
     for state in 0..p.states {
@@ -487,8 +529,12 @@ pub fn random_states(p: RandomStates) -> String {
                 za: true,
                 w: true,
                 tmus,
+                float: rng.chance(20),
             };
             triangle(&mut scene, v, sends);
+        }
+        if rng.chance(10) {
+            lfb_through_pipeline(&mut scene, &mut rng);
         }
         if rng.chance(3) {
             scene.w(addr::SWAPBUFFER_CMD, 0);
@@ -581,6 +627,35 @@ fn background(scene: &mut Scene, rng: &mut Rng) {
             for x in (x0..x0 + w).step_by(2) {
                 scene.w(LFB_BASE | (y << 11) | (x << 1), rng.u32());
             }
+        }
+    }
+    scene.w(addr::LFB_MODE, 0);
+}
+
+/// A few rows of LFB writes through the pixel pipeline in the state in force (spec
+/// 5.20: `lfbMode` bit 8), every other `lfbMode` bit at random (format, buffer, lanes,
+/// swaps, Y origin, W select) but the read bits, random data.
+fn lfb_through_pipeline(scene: &mut Scene, rng: &mut Rng) {
+    let mode = (random_bits(rng, addr::LFB_MODE) | (1 << 8)) & !(3 << 6);
+    let _ = writeln!(
+        scene.text,
+        "# LFB writes through the pipeline, lfbMode {mode:#07x}"
+    );
+    scene.w(addr::LFB_MODE, mode);
+    let (w, h) = (1 + rng.below(32), 1 + rng.below(8));
+    // 32-bit formats carry one pixel a write, 16-bit ones two (spec 5.20.1).
+    let wide = matches!(mode & 0xf, 4 | 5 | 12..=14);
+    let x0 = rng.below(640 - w) & if wide { !0 } else { !1 };
+    let y0 = rng.below(480 - h);
+    for y in y0..y0 + h {
+        let step = if wide { 1 } else { 2 };
+        for x in (x0..x0 + w).step_by(step) {
+            let offset = if wide {
+                (y << 12) | (x << 2)
+            } else {
+                (y << 11) | (x << 1)
+            };
+            scene.w(LFB_BASE | offset, rng.u32());
         }
     }
     scene.w(addr::LFB_MODE, 0);

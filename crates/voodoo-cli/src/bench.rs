@@ -200,6 +200,7 @@ fn default_scenes(o: &Options) -> Result<Vec<Scene>, String> {
                 states: o.states,
                 triangles_per_state: 2,
                 dump_every: 0,
+                layout: false,
             }),
         ),
     ];

@@ -133,6 +133,10 @@ enum Command {
         /// TMUs on the board (random-states), 1 to 3.
         #[arg(long, default_value_t = 2)]
         tmus: u32,
+        /// A random frame-buffer layout (random-states): row pitch and buffer offset
+        /// drawn at random, so buffers may overlap.
+        #[arg(long)]
+        layout: bool,
         /// Output file (replaced through a temporary file); default stdout.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -265,8 +269,9 @@ fn main() -> ExitCode {
             seed,
             count,
             tmus,
+            layout,
             out,
-        } => gen(scene, seed, count, tmus, out.as_deref()),
+        } => gen(scene, seed, count, tmus, layout, out.as_deref()),
         Command::Bench {
             traces,
             iters,
@@ -742,6 +747,7 @@ fn gen(
     seed: u64,
     count: Option<u32>,
     tmus: u32,
+    layout: bool,
     out: Option<&Path>,
 ) -> Result<(), String> {
     use sst1_trace::scenes;
@@ -756,6 +762,7 @@ fn gen(
                 seed,
                 tmus,
                 states: count.unwrap_or(200),
+                layout,
                 ..scenes::RandomStates::default()
             })
         }
