@@ -142,11 +142,7 @@ impl Shadow {
 
 /// Whether a write starts a triangle (`triangleCMD` or `ftriangleCMD`).
 fn is_triangle(a: u32) -> bool {
-    a < 0x40_0000
-        && matches!(
-            (a & 0x3fc) as u32,
-            addr::TRIANGLE_CMD | addr::F_TRIANGLE_CMD
-        )
+    a < 0x40_0000 && matches!(a & 0x3fc, addr::TRIANGLE_CMD | addr::F_TRIANGLE_CMD)
 }
 
 /// How many triangles reached each selection of each stage, by name.
