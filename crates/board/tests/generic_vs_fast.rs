@@ -1,7 +1,8 @@
 //! Differential test of the span kernels (`pixelfx::span`, the fast path) against the
 //! generic path (the reference path, pixel by pixel: `Board::set_generic_path(true)`):
-//! every conformance, glide-sdk and example trace is replayed both ways with the default profile, and the conformance and glide-sdk
-//! ones again with each reference emulator's profile; every dump the trace takes, the final
+//! every conformance, glide-sdk, example and generated trace is replayed both ways with
+//! the default profile, and the conformance, glide-sdk and generated ones again with each
+//! reference emulator's profile; every dump the trace takes, the final
 //! front, back and aux buffers and the statistics counters must be bit-identical.
 //!
 //! Every fast replay of the hardware model runs on 1, 2 and 4 render threads
@@ -178,6 +179,18 @@ fn example_traces_identical() {
     let paths = traces("examples", |_| true);
     assert!(!paths.is_empty());
     check_all(&paths);
+}
+
+/// The generated scenes (`traces/generated`: 10-pixel triangles, random drawing states),
+/// with the default profile and each reference emulator's.
+#[test]
+fn generated_traces_identical() {
+    let paths = traces("generated", |_| true);
+    assert_eq!(paths.len(), 2);
+    check_all(&paths);
+    for reference in Reference::ALL {
+        check_all_with(&paths, reference.profile(), &[1, 2]);
+    }
 }
 
 /// The reference emulators' profiles (the conformance vote replays every trace with

@@ -312,7 +312,8 @@ impl Fbi {
     /// up afterwards. Returns `false`, having done nothing, where that could differ from
     /// shading the rows in order: a small triangle (not worth the threads), a row whose
     /// lanes would reach beyond the frame-buffer row (the single walk lets them run on
-    /// into the next row), or colour and aux rows that share memory. Otherwise every row
+    /// into the next row), two rows on one frame-buffer row (the Y-origin flip wraps at
+    /// 1024), or colour and aux rows that share memory. Otherwise every row
     /// touches only its own words, so the bands give the pixels and counters of the
     /// single walk whatever the thread count.
     fn shade_rows_threaded<M: PixelModel>(
@@ -331,6 +332,15 @@ impl Fbi {
             .iter()
             .any(|r| r.start < 0 || r.stop as usize > row_pixels)
         {
+            return false;
+        }
+        // The Y-origin flip keeps 10 bits (`Fbi::screen_y`): rows 1024 apart share a
+        // frame-buffer row, which the single walk visits twice in order.
+        let raster_ys = rows.iter().map(|r| r.y);
+        let (Some(lowest), Some(highest)) = (raster_ys.clone().min(), raster_ys.max()) else {
+            return false;
+        };
+        if st.mode.y_origin() && highest - lowest >= 1024 {
             return false;
         }
         let ys = rows.iter().filter(|r| r.scry >= 0).map(|r| r.scry as usize);

@@ -21,6 +21,8 @@
 //!   anything but earlier dumps.
 //! * [`OpCounts`]: what a trace does (writes, triangles, fills, swaps, registers touched).
 //! * [`judge`]: the conformance pass rule for a dump against the reference goldens.
+//! * [`scenes`]: generated scenes (small triangles, random drawing states) as seeded text
+//!   traces.
 //!
 //! Error messages that show input quote it with [`quote`], cut to a few dozen characters.
 
@@ -30,6 +32,7 @@ pub mod output;
 mod read;
 mod recorder;
 mod replay;
+pub mod scenes;
 pub mod text;
 mod writer;
 

@@ -8,6 +8,8 @@
 //! limit, and every file written goes through a temporary file renamed into place (see
 //! `sst1_trace::output`); dumps go to a fresh folder unless `--out` names one.
 
+mod bench;
+
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -119,6 +121,55 @@ enum Command {
         /// The 32-bit value (hex with 0x, or decimal).
         value: String,
     },
+    /// Write a generated scene (`sst1_trace::scenes`), seeded and deterministic, as a
+    /// text trace: to stdout, or to `--out FILE` (gzip if the name ends in `.gz`).
+    Gen {
+        /// Which scene.
+        #[arg(value_enum)]
+        scene: SceneKind,
+        /// Seed of the generator: the same seed and options give the same trace.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Triangles (small-tris, small-tex-tris; default 20000) or drawing states
+        /// (random-states; default 200).
+        #[arg(long)]
+        count: Option<u32>,
+        /// TMUs on the board (random-states), 1 to 3.
+        #[arg(long, default_value_t = 2)]
+        tmus: u32,
+        /// A random frame-buffer layout (random-states): row pitch and buffer offset
+        /// drawn at random, so buffers may overlap.
+        #[arg(long)]
+        layout: bool,
+        /// Output file (replaced through a temporary file); default stdout.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Measure replay throughput of the fast path and the reference path in the same run:
+    /// Mpix/s (`fbiPixelsIn` per second of the replaying thread's CPU time, parsing
+    /// excluded), Mtri/s, ns and cycles per pixel, and the fast path's speed-up. Default
+    /// scenes: perf_gouraud_heavy, perf_tex_heavy, 10-pixel Gouraud and textured
+    /// triangles, and a random-state scene.
+    Bench {
+        /// Trace files to measure instead of the default scenes.
+        traces: Vec<PathBuf>,
+        /// Runs per path; the fastest is kept.
+        #[arg(long, default_value_t = 3)]
+        iters: u32,
+        /// Print JSON (for tools) instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Triangles in each generated small-triangle scene.
+        #[arg(long, default_value_t = 20000)]
+        small: u32,
+        /// Drawing states in the generated random-state scene.
+        #[arg(long, default_value_t = 200)]
+        states: u32,
+        /// Folder holding perf_gouraud_heavy.trace.gz and perf_tex_heavy.trace.gz
+        /// (default: the repository's traces/conformance/traces).
+        #[arg(long, value_name = "DIR")]
+        trace_dir: Option<PathBuf>,
+    },
     /// Convert a trace between the text and binary forms, chosen by OUT's extension:
     /// `.vtrace` binary, `.vtrace.gz` gzip binary, `.gz` gzip text, anything else text.
     Convert {
@@ -127,6 +178,17 @@ enum Command {
         /// Output file.
         output: PathBuf,
     },
+}
+
+/// A generated scene of `voodoo gen`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum SceneKind {
+    /// Gouraud triangles of about 10 pixels.
+    SmallTris,
+    /// Textured triangles of about 10 pixels (bilinear, perspective, mipmapped).
+    SmallTexTris,
+    /// Triangles of random size in random drawing states.
+    RandomStates,
 }
 
 /// The model of the board a replay runs.
@@ -208,6 +270,29 @@ fn main() -> ExitCode {
         Command::Info { trace } => info(&trace),
         Command::Reg { register, value } => reg(&register, &value),
         Command::Convert { input, output } => convert(&input, &output),
+        Command::Gen {
+            scene,
+            seed,
+            count,
+            tmus,
+            layout,
+            out,
+        } => gen(scene, seed, count, tmus, layout, out.as_deref()),
+        Command::Bench {
+            traces,
+            iters,
+            json,
+            small,
+            states,
+            trace_dir,
+        } => bench::bench(&bench::Options {
+            traces,
+            iters,
+            json,
+            small,
+            states,
+            trace_dir,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -693,6 +778,49 @@ fn convert(input: &Path, output: &Path) -> Result<(), String> {
     write_file_replacing(output, &bytes).map_err(|e| e.to_string())?;
     println!("wrote {} ({} ops)", output.display(), trace.ops.len());
     Ok(())
+}
+
+fn gen(
+    scene: SceneKind,
+    seed: u64,
+    count: Option<u32>,
+    tmus: u32,
+    layout: bool,
+    out: Option<&Path>,
+) -> Result<(), String> {
+    use sst1_trace::scenes;
+    let text = match scene {
+        SceneKind::SmallTris => scenes::small_triangles(seed, count.unwrap_or(20000), false),
+        SceneKind::SmallTexTris => scenes::small_triangles(seed, count.unwrap_or(20000), true),
+        SceneKind::RandomStates => {
+            if !(1..=3).contains(&tmus) {
+                return Err(format!("--tmus {tmus}: a board has 1 to 3 TMUs"));
+            }
+            scenes::random_states(scenes::RandomStates {
+                seed,
+                tmus,
+                states: count.unwrap_or(200),
+                layout,
+                ..scenes::RandomStates::default()
+            })
+        }
+    };
+    match out {
+        None => {
+            use std::io::Write;
+            std::io::stdout()
+                .write_all(text.as_bytes())
+                .map_err(|e| format!("stdout: {e}"))
+        }
+        Some(path) => {
+            let bytes = if path.extension().is_some_and(|e| e == "gz") {
+                gzip_bytes(text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?
+            } else {
+                text.into_bytes()
+            };
+            write_file_replacing(path, &bytes).map_err(|e| e.to_string())
+        }
+    }
 }
 
 fn gzip_bytes(bytes: &[u8]) -> std::io::Result<Vec<u8>> {

@@ -305,3 +305,123 @@ fn check_judges_dumps_against_goldens() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("1 pixels break the pass rule"));
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn gen_writes_the_same_scene_for_a_seed() {
+    let dir = scratch("gen");
+    let a = stdout(&voodoo(
+        &dir,
+        &["gen", "small-tris", "--seed", "7", "--count", "30"],
+    ));
+    let b = stdout(&voodoo(
+        &dir,
+        &["gen", "small-tris", "--seed", "7", "--count", "30"],
+    ));
+    assert_eq!(a, b);
+    assert!(
+        a.starts_with("# small triangles: 30 Gouraud triangles"),
+        "{a}"
+    );
+    assert_eq!(
+        a.lines().filter(|l| l.starts_with("w 0x000080 ")).count(),
+        30
+    );
+    let out = voodoo(
+        &dir,
+        &[
+            "gen",
+            "random-states",
+            "--seed",
+            "7",
+            "--count",
+            "3",
+            "--tmus",
+            "3",
+            "--out",
+            "rs.trace.gz",
+        ],
+    );
+    stdout(&out);
+    let info = stdout(&voodoo(&dir, &["info", "rs.trace.gz"]));
+    assert!(
+        info.starts_with("board: fbi_mb 4, tmus 3, tmu_mb 4\n"),
+        "{info}"
+    );
+    assert!(info.contains("triangles: 6,"), "{info}");
+    let bad = voodoo(&dir, &["gen", "random-states", "--tmus", "4"]);
+    assert!(!bad.status.success());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// The layout of `voodoo bench`'s table and JSON on a tiny scene (no timing is checked).
+#[test]
+fn bench_reports_both_paths() {
+    let dir = scratch("bench");
+    stdout(&voodoo(
+        &dir,
+        &[
+            "gen",
+            "small-tex-tris",
+            "--count",
+            "20",
+            "--out",
+            "tiny.trace",
+        ],
+    ));
+    let out = stdout(&voodoo(&dir, &["bench", "--iters", "1", "tiny.trace"]));
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 4, "{out}");
+    assert!(
+        lines[0].starts_with("best of 1 run(s) per path, one thread, "),
+        "{out}"
+    );
+    let header: Vec<&str> = lines[1].split_whitespace().collect();
+    assert_eq!(
+        header,
+        [
+            "scene",
+            "path",
+            "Mpix/s",
+            "Mtri/s",
+            "ns/pix",
+            "cyc/pix",
+            "speed-up",
+            "pixels",
+            "in",
+            "triangles"
+        ]
+    );
+    let fast: Vec<&str> = lines[2].split_whitespace().collect();
+    assert_eq!((fast[0], fast[1]), ("tiny", "fast"), "{out}");
+    assert!(fast[6].ends_with('x'), "{out}");
+    assert_eq!(fast[8], "20", "{out}");
+    let reference: Vec<&str> = lines[3].split_whitespace().collect();
+    assert_eq!(reference[0], "reference", "{out}");
+    assert_eq!(reference[reference.len() - 1], "20", "{out}");
+
+    let json = stdout(&voodoo(
+        &dir,
+        &["bench", "--iters", "1", "--json", "tiny.trace"],
+    ));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["iters"], 1);
+    let scene = &v["scenes"][0];
+    assert_eq!(scene["name"], "tiny");
+    assert_eq!(scene["triangles"], 20);
+    assert_eq!(scene["counters_match"], true);
+    assert!(scene["pixels_in"].as_u64().unwrap() > 0);
+    for path in ["fast", "reference"] {
+        for key in [
+            "cpu_s",
+            "wall_s",
+            "mpix_per_s",
+            "mtri_per_s",
+            "ns_per_pixel",
+        ] {
+            assert!(scene[path][key].is_number(), "{path}.{key}: {json}");
+        }
+        assert!(scene[path].get("cycles_per_pixel").is_some(), "{json}");
+    }
+    assert!(scene["speedup"].as_f64().unwrap() > 0.0);
+    std::fs::remove_dir_all(dir).unwrap();
+}

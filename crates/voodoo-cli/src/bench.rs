@@ -1,0 +1,341 @@
+//! `voodoo bench`: replay throughput of the fast path (the span kernels) and the
+//! reference path (`Board::set_generic_path(true)`) in the same run.
+//!
+//! Each scene is loaded (or generated and parsed) first; only the replay is timed, from
+//! the replaying thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`; wall time where there is
+//! none), because other load on a shared machine inflates wall time far more. Each
+//! path runs `iters` times on a fresh board and the fastest run is kept. Pixels are the
+//! board's `fbiPixelsIn` count (spec 5.31: every pixel the triangle walker processes).
+//! Cycles per pixel use the CPU's clock rate where Linux tells it (`cpufreq`'s maximum,
+//! else `cpu MHz` of `/proc/cpuinfo`) and are left out otherwise.
+//!
+//! This is `crates/board/benches/replay.rs` as a command, with the generated scenes of
+//! `sst1_trace::scenes` beside the perf traces.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use sst1_board::{Board, Stats};
+use sst1_trace::scenes::{self, RandomStates};
+use sst1_trace::{execute, load_trace, read_trace, Trace};
+
+/// The recorded traces `voodoo bench` runs by default (in `traces/conformance/traces`).
+pub const PERF_TRACES: [&str; 2] = ["perf_gouraud_heavy", "perf_tex_heavy"];
+
+/// The repository's conformance traces, where this binary was built.
+fn default_trace_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces/conformance/traces")
+}
+
+/// What to run.
+pub struct Options {
+    /// Trace files to run instead of the default set.
+    pub traces: Vec<PathBuf>,
+    /// Runs per path; the fastest is kept.
+    pub iters: u32,
+    /// Print JSON instead of a table.
+    pub json: bool,
+    /// Triangles in each small-triangle scene.
+    pub small: u32,
+    /// States in the random-state scene.
+    pub states: u32,
+    /// Where the perf traces are (default: the repository's `traces/conformance/traces`).
+    pub trace_dir: Option<PathBuf>,
+}
+
+/// One scene to run: its name and ops.
+struct Scene {
+    name: String,
+    trace: Trace,
+}
+
+/// One replay's cost.
+#[derive(Clone, Copy)]
+struct Timing {
+    wall: Duration,
+    /// `None` where the OS does not tell (only Linux's schedstat is read).
+    cpu: Option<Duration>,
+}
+
+impl Timing {
+    /// The time throughput is computed from: CPU time where known.
+    fn key(&self) -> Duration {
+        self.cpu.unwrap_or(self.wall)
+    }
+}
+
+/// Time this thread has spent running: `CLOCK_THREAD_CPUTIME_ID` (precise to the
+/// nanosecond on Linux), else the first field of `/proc/thread-self/schedstat` (what
+/// `crates/board/benches/replay.rs` reads; it advances only at scheduler ticks, a few
+/// milliseconds, so it suits long replays only).
+fn thread_cpu_time() -> Option<Duration> {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec for the duration of the call.
+    if unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) } == 0 {
+        return Some(Duration::new(ts.tv_sec as u64, ts.tv_nsec as u32));
+    }
+    let s = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns = s.split_whitespace().next()?.parse().ok()?;
+    Some(Duration::from_nanos(ns))
+}
+
+/// The CPU's clock rate in Hz and where it came from, if Linux tells it.
+fn clock_hz() -> Option<(f64, &'static str)> {
+    if let Ok(s) = std::fs::read_to_string("/sys/devices/system/cpu/cpu0/cpufreq/cpuinfo_max_freq")
+    {
+        if let Ok(khz) = s.trim().parse::<f64>() {
+            return Some((khz * 1e3, "cpufreq cpuinfo_max_freq"));
+        }
+    }
+    let info = std::fs::read_to_string("/proc/cpuinfo").ok()?;
+    let mhz = info
+        .lines()
+        .find(|l| l.starts_with("cpu MHz"))?
+        .split(':')
+        .nth(1)?
+        .trim()
+        .parse::<f64>()
+        .ok()?;
+    Some((mhz * 1e6, "/proc/cpuinfo cpu MHz"))
+}
+
+/// Replays `trace` once on a fresh board, on the reference path or the fast path.
+fn run_once(trace: &Trace, reference: bool) -> (Timing, Stats) {
+    let mut board = Board::new(trace.board_config());
+    board.set_generic_path(reference);
+    let cpu0 = thread_cpu_time();
+    let start = Instant::now();
+    let dumps = execute(&trace.ops, &mut board, |_| {});
+    let wall = start.elapsed();
+    let cpu = thread_cpu_time()
+        .zip(cpu0)
+        .map(|(b, a)| b.saturating_sub(a));
+    std::hint::black_box(dumps);
+    (Timing { wall, cpu }, board.stats())
+}
+
+/// The fastest of `iters` runs.
+fn best_of(trace: &Trace, reference: bool, iters: u32) -> (Timing, Stats) {
+    let mut best: Option<(Timing, Stats)> = None;
+    for _ in 0..iters.max(1) {
+        let (t, s) = run_once(trace, reference);
+        if best.map_or(true, |(b, _)| t.key() < b.key()) {
+            best = Some((t, s));
+        }
+    }
+    best.expect("at least one run")
+}
+
+/// The figures of one path on one scene.
+struct PathResult {
+    timing: Timing,
+    stats: Stats,
+}
+
+impl PathResult {
+    fn secs(&self) -> f64 {
+        self.timing.key().as_secs_f64().max(1e-9)
+    }
+
+    fn mpix(&self) -> f64 {
+        self.stats.pixels_in as f64 / self.secs() / 1e6
+    }
+
+    fn mtri(&self) -> f64 {
+        self.stats.triangles as f64 / self.secs() / 1e6
+    }
+
+    fn ns_per_pixel(&self) -> Option<f64> {
+        (self.stats.pixels_in > 0).then(|| self.secs() * 1e9 / self.stats.pixels_in as f64)
+    }
+
+    fn cycles_per_pixel(&self, clock: Option<f64>) -> Option<f64> {
+        Some(self.ns_per_pixel()? * clock? / 1e9)
+    }
+
+    fn json(&self, clock: Option<f64>) -> serde_json::Value {
+        serde_json::json!({
+            "cpu_s": self.timing.cpu.map(|c| c.as_secs_f64()),
+            "wall_s": self.timing.wall.as_secs_f64(),
+            "mpix_per_s": self.mpix(),
+            "mtri_per_s": self.mtri(),
+            "ns_per_pixel": self.ns_per_pixel(),
+            "cycles_per_pixel": self.cycles_per_pixel(clock),
+        })
+    }
+}
+
+/// The default scenes: the perf traces (where found), then the generated ones.
+fn default_scenes(o: &Options) -> Result<Vec<Scene>, String> {
+    let dir = o.trace_dir.clone().unwrap_or_else(default_trace_dir);
+    let mut out = Vec::new();
+    for name in PERF_TRACES {
+        let path = dir.join(format!("{name}.trace.gz"));
+        if path.exists() {
+            out.push(Scene {
+                name: name.to_owned(),
+                trace: load_trace(&path).map_err(|e| e.to_string())?,
+            });
+        } else if !o.json {
+            eprintln!("voodoo bench: {} not found, skipped", path.display());
+        }
+    }
+    let generated = [
+        (
+            format!("small_tris_gouraud ({} tris)", o.small),
+            scenes::small_triangles(1, o.small, false),
+        ),
+        (
+            format!("small_tris_textured ({} tris)", o.small),
+            scenes::small_triangles(1, o.small, true),
+        ),
+        (
+            format!("random_states ({} states, 2 TMUs)", o.states),
+            scenes::random_states(RandomStates {
+                seed: 1,
+                tmus: 2,
+                states: o.states,
+                triangles_per_state: 2,
+                dump_every: 0,
+                layout: false,
+            }),
+        ),
+    ];
+    for (name, text) in generated {
+        let trace = read_trace(&name, text.as_bytes()).map_err(|e| e.to_string())?;
+        out.push(Scene { name, trace });
+    }
+    Ok(out)
+}
+
+/// The name of a trace file without its folder and `.trace[.gz]`/`.vtrace[.gz]`.
+fn stem(path: &Path) -> String {
+    let file = path
+        .file_name()
+        .map_or(String::new(), |f| f.to_string_lossy().into_owned());
+    file.split('.').next().unwrap_or_default().to_owned()
+}
+
+/// Runs `voodoo bench`.
+pub fn bench(o: &Options) -> Result<(), String> {
+    let scenes = if o.traces.is_empty() {
+        default_scenes(o)?
+    } else {
+        o.traces
+            .iter()
+            .map(|p| {
+                Ok(Scene {
+                    name: stem(p),
+                    trace: load_trace(p).map_err(|e| e.to_string())?,
+                })
+            })
+            .collect::<Result<_, String>>()?
+    };
+    let clock = clock_hz();
+    let timer = if thread_cpu_time().is_some() {
+        "thread CPU time"
+    } else {
+        "wall time"
+    };
+    if !o.json {
+        println!(
+            "best of {} run(s) per path, one thread, {timer} of the replay (parsing excluded){}",
+            o.iters.max(1),
+            clock.map_or(String::new(), |(hz, from)| format!(
+                "; clock {:.2} GHz ({from})",
+                hz / 1e9
+            ))
+        );
+        println!(
+            "{:<34} {:<9} {:>9} {:>9} {:>8} {:>8} {:>9} {:>11} {:>9}",
+            "scene",
+            "path",
+            "Mpix/s",
+            "Mtri/s",
+            "ns/pix",
+            "cyc/pix",
+            "speed-up",
+            "pixels in",
+            "triangles"
+        );
+    }
+    let mut json_scenes = Vec::new();
+    let mut all_match = true;
+    for scene in &scenes {
+        let (t, s) = best_of(&scene.trace, false, o.iters);
+        let fast = PathResult {
+            timing: t,
+            stats: s,
+        };
+        let (t, s) = best_of(&scene.trace, true, o.iters);
+        let reference = PathResult {
+            timing: t,
+            stats: s,
+        };
+        let speedup = reference.secs() / fast.secs();
+        let same = fast.stats == reference.stats;
+        all_match &= same;
+        let hz = clock.map(|(hz, _)| hz);
+        if o.json {
+            json_scenes.push(serde_json::json!({
+                "name": scene.name,
+                "pixels_in": fast.stats.pixels_in,
+                "pixels_out": fast.stats.pixels_out,
+                "triangles": fast.stats.triangles,
+                "fast": fast.json(hz),
+                "reference": reference.json(hz),
+                "speedup": speedup,
+                "counters_match": same,
+            }));
+        } else {
+            let opt =
+                |v: Option<f64>, prec: usize| v.map_or("-".to_owned(), |v| format!("{v:.prec$}"));
+            for (label, r, up) in [
+                ("fast", &fast, format!("{speedup:.2}x")),
+                ("reference", &reference, String::new()),
+            ] {
+                let name = if label == "fast" {
+                    scene.name.as_str()
+                } else {
+                    ""
+                };
+                println!(
+                    "{:<34} {:<9} {:>9.2} {:>9.4} {:>8.2} {:>8} {:>9} {:>11} {:>9}",
+                    name,
+                    label,
+                    r.mpix(),
+                    r.mtri(),
+                    r.ns_per_pixel().unwrap_or(0.0),
+                    opt(r.cycles_per_pixel(hz), 1),
+                    up,
+                    r.stats.pixels_in,
+                    r.stats.triangles
+                );
+            }
+            if !same {
+                println!("  COUNTERS DIFFER between the fast and the reference path");
+            }
+        }
+    }
+    if o.json {
+        let doc = serde_json::json!({
+            "iters": o.iters.max(1),
+            "timer": timer,
+            "clock_hz": clock.map(|(hz, _)| hz),
+            "clock_source": clock.map(|(_, from)| from),
+            "scenes": json_scenes,
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?
+        );
+    }
+    if all_match {
+        Ok(())
+    } else {
+        Err("the fast and the reference path counted differently".to_owned())
+    }
+}
