@@ -218,6 +218,7 @@ fn raster_stats(paths: &[PathBuf]) {
                 TraceOp::Read { addr, .. } => {
                     board.read32(addr);
                 }
+                TraceOp::Wait { cycles } => board.host_wait(cycles),
                 TraceOp::Config { .. } | TraceOp::Dump { .. } => {}
             }
         }

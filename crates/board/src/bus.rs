@@ -197,6 +197,10 @@ impl RegisterBus for Board {
         }
     }
 
+    fn host_wait(&mut self, cycles: u64) {
+        self.timing.host_wait(cycles, self.fbi.reg(addr::V_SYNC));
+    }
+
     fn pci_write(&mut self, offset: u32, value: u32) {
         if offset == PCI_INIT_ENABLE {
             self.init_enable = value;

@@ -72,6 +72,19 @@ pub const REFRESH_HZ: u64 = 60;
 /// Lines of vertical sync and of the whole frame when `vSync` is not set: VESA
 /// 640x480 at 60 Hz (2 of 525).
 const DEFAULT_VSYNC_LINES: (u64, u64) = (2, 525);
+/// The count's clock (and the host time it charges) stops here (1/16 clock; 2^58 clocks,
+/// 183 years at 50 MHz): however long the waits a trace asks for, no count overflows.
+pub const HOST_CLOCK_MAX: u64 = 1 << 62;
+/// The longest wait the host's view plays out in full (1/16 clock; 2^55 clocks, 22
+/// years at 50 MHz). A longer one is shortened by whole frames, which keeps the
+/// retrace's phase and is long enough for every pending command to be done.
+const WAIT_MAX: u64 = 1 << 59;
+/// When the host's clock passes this (1/16 clock), every time the view holds is moved
+/// back by whole frames, so the clock never overflows however many waits a trace has.
+const REBASE_AT: u64 = 1 << 60;
+/// Frames of the host's past that a rebase keeps: more than the longest swap interval
+/// (255) looks back.
+const REBASE_KEEP_FRAMES: u64 = 257;
 
 /// Where one frame's (or the whole replay's) modelled time went, in graphics clocks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -86,15 +99,19 @@ pub struct FrameTime {
     pub bus_bound: u64,
     /// Cycles of the SWAPBUFFER command: waiting for vertical retrace.
     pub retrace_wait: u64,
+    /// Cycles where the host's own time (a trace's `wait` lines), not the engine, was
+    /// the limit (included in the above, not in `bus_bound`).
+    pub host_wait: u64,
 }
 
 impl FrameTime {
     fn add(&mut self, o: &FrameTime) {
-        self.cycles += o.cycles;
-        self.triangles += o.triangles;
-        self.fills += o.fills;
-        self.bus_bound += o.bus_bound;
-        self.retrace_wait += o.retrace_wait;
+        self.cycles = self.cycles.saturating_add(o.cycles);
+        self.triangles = self.triangles.saturating_add(o.triangles);
+        self.fills = self.fills.saturating_add(o.fills);
+        self.bus_bound = self.bus_bound.saturating_add(o.bus_bound);
+        self.retrace_wait = self.retrace_wait.saturating_add(o.retrace_wait);
+        self.host_wait = self.host_wait.saturating_add(o.host_wait);
     }
 }
 
@@ -116,6 +133,9 @@ pub struct Timing {
     /// Bus time (1/16 clock) of the writes since the last command.
     #[serde(skip)]
     pending_bus: u64,
+    /// Host time (1/16 clock, trace `wait` lines) since the last command.
+    #[serde(skip)]
+    pending_wait: u64,
     /// Sub-clock remainder carried between commands (1/16 clock).
     #[serde(skip)]
     fraction: u64,
@@ -220,6 +240,36 @@ impl HostView {
         self.last_taken = taken;
     }
 
+    /// Host time passes without a bus access: `cycles` graphics clocks; the engine
+    /// drains the FIFO meanwhile. `period` is the frame's (1/16 clock): a wait longer
+    /// than [`WAIT_MAX`] is shortened by whole frames, and the clock is moved back by
+    /// whole frames past [`REBASE_AT`], so nothing overflows and the retrace keeps its
+    /// phase.
+    fn wait(&mut self, cycles: u64, period: u64) {
+        let period = period.max(1);
+        let sub = u128::from(cycles) * u128::from(SUB);
+        let max = u128::from(WAIT_MAX);
+        let sub = if sub > max {
+            max + (sub - max) % u128::from(period)
+        } else {
+            sub
+        };
+        // At most WAIT_MAX + period, below 2^60.
+        self.now += sub as u64;
+        if self.now > REBASE_AT {
+            let keep = REBASE_KEEP_FRAMES.saturating_mul(period).min(REBASE_AT / 2);
+            let shift = (self.now - keep) / period * period;
+            let back = |t: &mut u64| *t = t.saturating_sub(shift);
+            back(&mut self.now);
+            back(&mut self.engine_free);
+            back(&mut self.tmu_free);
+            back(&mut self.last_taken);
+            back(&mut self.last_swap);
+            self.fifo.iter_mut().for_each(back);
+            self.swaps.iter_mut().for_each(back);
+        }
+    }
+
     /// The command in the last write keeps the engine busy `engine` (1/16 clock).
     fn command(&mut self, engine: u64, textured: bool) {
         self.engine_free = self.last_taken + engine;
@@ -237,6 +287,7 @@ impl Default for Timing {
             frames: Vec::new(),
             current: FrameTime::default(),
             pending_bus: 0,
+            pending_wait: 0,
             fraction: 0,
             last_swap: 0,
             host: HostView::default(),
@@ -271,6 +322,18 @@ impl Timing {
     #[inline]
     pub(crate) fn read(&mut self) {
         self.host.now += PCI_CLOCKS_PER_READ;
+    }
+
+    /// Host time passes between bus accesses: `cycles` graphics clocks (a trace's
+    /// `wait` line). The host's clock moves on, so the engine drains what the FIFO holds
+    /// meanwhile and a `status` read after it sees that; the count charges it as feed
+    /// time of the next command (a command costs the longer of its bus and host time
+    /// and its engine time). Saturating: a wait of any length costs constant time.
+    pub(crate) fn host_wait(&mut self, cycles: u64, vsync: u32) {
+        self.host
+            .wait(cycles, Retrace::new(self.clock_hz, vsync).period);
+        let sub = cycles.saturating_mul(SUB).min(HOST_CLOCK_MAX);
+        self.pending_wait = self.pending_wait.saturating_add(sub).min(HOST_CLOCK_MAX);
     }
 
     /// The `status` register (spec 5.1) at the host's present time: `fbi_bits` is the
@@ -318,8 +381,8 @@ impl Timing {
         let engine = setup.max(raster);
         self.host.command(engine, w.textured);
         let (cycles, bus_bound) = self.command(engine);
-        self.current.triangles += cycles;
-        self.current.bus_bound += bus_bound;
+        self.current.triangles = self.current.triangles.saturating_add(cycles);
+        self.current.bus_bound = self.current.bus_bound.saturating_add(bus_bound);
     }
 
     /// A FASTFILL of `rows` rows of `pixels` pixels in all ran.
@@ -327,8 +390,8 @@ impl Timing {
         let engine = pixels * SUB / 2 + rows * FILL_ROW_CLOCKS;
         self.host.command(engine, false);
         let (cycles, bus_bound) = self.command(engine);
-        self.current.fills += cycles;
-        self.current.bus_bound += bus_bound;
+        self.current.fills = self.current.fills.saturating_add(cycles);
+        self.current.bus_bound = self.current.bus_bound.saturating_add(bus_bound);
     }
 
     /// A SWAPBUFFER ended the frame.
@@ -350,7 +413,11 @@ impl Timing {
         self.host.swaps.push_back(done);
         self.host.engine_free = self.host.engine_free.max(done);
         // The count: the same wait on the board's own clock (the cycles so far).
-        let now = self.cycles() * SUB + self.fraction + self.pending_bus;
+        let now = self
+            .cycles()
+            .saturating_mul(SUB)
+            .saturating_add(self.fraction + self.pending_bus + self.pending_wait)
+            .min(HOST_CLOCK_MAX);
         let wait = if synced {
             retrace.swap_time(now, self.last_swap, interval) - now
         } else {
@@ -369,21 +436,26 @@ impl Timing {
     }
 
     /// The cost (whole clocks) of a command whose engine time is `engine` (1/16 clock),
-    /// overlapped with the bus time of the writes that fed it; and the part of it by
-    /// which the bus was the longer.
+    /// overlapped with the feed of the writes before it (their bus time and the host's
+    /// waits between them); and the part of it by which the bus was the longer (the part
+    /// by which the host's waits were goes to `host_wait`).
     fn command(&mut self, engine: u64) -> (u64, u64) {
         let bus = std::mem::take(&mut self.pending_bus);
-        let sub = bus.max(engine) + self.fraction;
+        let wait = std::mem::take(&mut self.pending_wait);
+        let feed = bus + wait;
+        let sub = feed.max(engine) + self.fraction;
         self.fraction = sub % SUB;
         let cycles = sub / SUB;
-        self.current.cycles += cycles;
-        let bus_bound = bus.saturating_sub(engine) / SUB;
-        (cycles, bus_bound)
+        self.current.cycles = self.current.cycles.saturating_add(cycles);
+        let excess = feed.saturating_sub(engine);
+        let host = excess.min(wait);
+        self.current.host_wait = self.current.host_wait.saturating_add(host / SUB);
+        (cycles, (excess - host) / SUB)
     }
 
     /// Cycles modelled so far, the frame in progress included.
     pub fn cycles(&self) -> u64 {
-        self.total.cycles + self.current.cycles
+        self.total.cycles.saturating_add(self.current.cycles)
     }
 
     /// The frame in progress (since the last swap).
@@ -475,6 +547,38 @@ mod tests {
         // 172,500 clocks at 4.5 clocks a read.
         assert_eq!(reads, 172_500 * 16 / PCI_CLOCKS_PER_READ as usize);
         assert_eq!((t.status(0, 0) >> 28) & 7, 0);
+    }
+
+    #[test]
+    fn huge_waits_keep_the_retrace_phase_and_never_overflow() {
+        let mut t = Timing::default();
+        let period = Retrace::new(DEFAULT_CLOCK_HZ, 0).period;
+        t.write();
+        t.fastfill(640 * 480, 480);
+        let mut exact = u128::from(t.host.now);
+        for cycles in [u64::MAX, 1 << 50, u64::MAX, 12_345, u64::MAX] {
+            t.host_wait(cycles, 0);
+            // A wait over WAIT_MAX is shortened by whole frames.
+            let sub = u128::from(cycles) * 16;
+            let played = if sub > u128::from(WAIT_MAX) {
+                u128::from(WAIT_MAX) + (sub - u128::from(WAIT_MAX)) % u128::from(period)
+            } else {
+                sub
+            };
+            exact += played;
+            assert!(t.host.now <= REBASE_AT);
+            assert_eq!(
+                u128::from(t.host.now) % u128::from(period),
+                exact % u128::from(period),
+                "the retrace keeps its phase"
+            );
+            assert_eq!(t.status(0, 0) & 0x3bf, 0x3f, "idle after the wait");
+        }
+        // The count saturates.
+        t.write();
+        t.swap(0, 0);
+        assert_eq!(t.frames[0].host_wait, HOST_CLOCK_MAX / SUB);
+        assert!(t.cycles() < u64::MAX);
     }
 
     #[test]

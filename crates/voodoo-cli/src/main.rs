@@ -344,6 +344,7 @@ impl Stats {
                 "fills": f.fills,
                 "bus_bound": f.bus_bound,
                 "retrace_wait": f.retrace_wait,
+                "host_wait": f.host_wait,
             })
         };
         serde_json::json!({
@@ -450,12 +451,13 @@ fn replay(
             );
             for (i, f) in t.frames.iter().enumerate() {
                 println!(
-                    "frame {i:<6} {:.3} ms: triangles {:.3}, fills {:.3}, retrace wait {:.3}, bus-bound {:.3}",
+                    "frame {i:<6} {:.3} ms: triangles {:.3}, fills {:.3}, retrace wait {:.3}, bus-bound {:.3}, host-bound {:.3}",
                     ms(f.cycles),
                     ms(f.triangles),
                     ms(f.fills),
                     ms(f.retrace_wait),
-                    ms(f.bus_bound)
+                    ms(f.bus_bound),
+                    ms(f.host_wait)
                 );
             }
             println!("pixels in    {}", c.pixels_in);
@@ -598,6 +600,12 @@ fn info(path: &Path) -> Result<(), String> {
         "ops: {ops} ({} writes, {} reads, {} pci, {} dumps)",
         c.writes, c.reads, c.pci, c.dumps
     );
+    if c.waits > 0 {
+        println!(
+            "waits: {} ({} graphics-clock cycles of host time)",
+            c.waits, c.wait_cycles
+        );
+    }
     println!(
         "writes: {} register, {} frame buffer, {} texture",
         c.register_writes, c.lfb_writes, c.texture_writes
