@@ -5,6 +5,7 @@ use crate::box86;
 use crate::diagnostics::Diagnostic;
 use crate::model::{with_model, ChipModel};
 use crate::timing::TriangleWork;
+use crate::video::VideoRegs;
 use crate::Board;
 use pixelfx::{Command, NoTexture};
 use sst1_chain::Chain;
@@ -75,9 +76,28 @@ impl Board {
             Command::Fastfill => self.fastfill::<M>(),
             Command::Swap => {
                 self.fbi.swap();
-                self.timing.swap(value, self.fbi.reg(addr::V_SYNC));
+                self.timing.swap(value);
             }
         }
+        // The frame's timing follows the video registers and the DAC (spec 10).
+        match offset {
+            addr::DAC_DATA => {
+                self.dac.write(value);
+                self.video_changed();
+            }
+            addr::H_SYNC | addr::V_SYNC | addr::FBI_INIT1 => self.video_changed(),
+            _ => {}
+        }
+    }
+
+    /// Tells the timing model the video registers or the DAC changed.
+    fn video_changed(&mut self) {
+        let regs = VideoRegs {
+            h_sync: self.fbi.reg(addr::H_SYNC),
+            v_sync: self.fbi.reg(addr::V_SYNC),
+            fbi_init1: self.fbi.reg(addr::FBI_INIT1),
+        };
+        self.timing.set_video(regs, &self.dac);
     }
 
     /// Run a triangle command with the TMU chain (spec 5.15).
@@ -183,11 +203,12 @@ impl RegisterBus for Board {
                     self.fbi.read_reg(offset)
                 }
             };
-            if offset & 0x3fc == addr::STATUS {
-                // FIFO, busy and swap bits from the timing model.
-                self.timing.status(value, self.fbi.reg(addr::V_SYNC))
-            } else {
-                value
+            match offset & 0x3fc {
+                // FIFO, busy, retrace and swap bits from the timing model.
+                addr::STATUS => self.timing.status(value),
+                // The scan line from the video timing (spec 5.37).
+                addr::V_RETRACE => self.timing.v_retrace(),
+                _ => value,
             }
         } else if bus_addr < TEX_BASE {
             self.fbi.lfb_read(bus_addr - LFB_BASE)
@@ -198,7 +219,7 @@ impl RegisterBus for Board {
     }
 
     fn host_wait(&mut self, cycles: u64) {
-        self.timing.host_wait(cycles, self.fbi.reg(addr::V_SYNC));
+        self.timing.host_wait(cycles);
     }
 
     fn pci_write(&mut self, offset: u32, value: u32) {

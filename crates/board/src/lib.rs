@@ -18,6 +18,7 @@ pub mod model;
 pub mod presets;
 pub mod reference;
 pub mod timing;
+mod video;
 
 use serde::{Deserialize, Serialize};
 
@@ -27,7 +28,7 @@ pub use model::Model;
 pub use pixelfx::{PixelProfile, Stats};
 pub use reference::{vote, Reference};
 pub use texelfx::{TexelProfile, Tmu};
-pub use timing::{FrameTime, Timing};
+pub use timing::{Frame, FrameTime, Timing};
 
 use pixelfx::Fbi;
 
@@ -110,6 +111,8 @@ pub struct Board {
     model: Model,
     /// The modelled hardware time.
     timing: Timing,
+    /// The DAC's PLL registers (the pixel clock), as `dacData` writes set them.
+    dac: video::Dac,
 }
 
 impl Board {
@@ -127,6 +130,7 @@ impl Board {
             diagnostics: Diagnostics::default(),
             model: Model::Hardware,
             timing: Timing::default(),
+            dac: video::Dac::default(),
         }
     }
 

@@ -25,14 +25,21 @@
 //!   pixels are written per clock") plus [`FILL_ROW_CLOCKS`] per row, fitted to the spec's
 //!   3.45 ms for a 640x480 clear.
 //!
+//! * **Video:** the vertical retrace, which synchronised swaps wait for and `status` bit 6
+//!   reads, follows the frame of the video registers and the DAC's pixel clock
+//!   ([`Frame`], spec 10).
+//! * **Host time:** a trace's `wait` ops move the host's clock on between accesses.
+//!
 //! The constants are in 1/16 clock so that the fits need no floating point; the count is
-//! exact and the same on every run (it depends only on the writes, never on the host).
+//! exact and the same on every run (it depends only on the trace, never on the host).
 //! `firmware-tests/tests/timing.rs` builds the spec's scenes and checks every row of its
 //! table; docs/timing.md shows the table.
 
 use std::collections::VecDeque;
 
 use serde::Serialize;
+
+use crate::video::{Dac, VideoRegs};
 
 /// Graphics clock of the boards the spec's table assumes.
 pub const DEFAULT_CLOCK_HZ: u64 = 50_000_000;
@@ -66,12 +73,7 @@ pub const FILL_ROW_CLOCKS: u64 = 630;
 pub const PCI_CLOCKS_PER_READ: u64 = 72;
 /// Entries of the PCI FIFO (spec 3: "an asynchronous FIFO 64 entries deep").
 pub const PCI_FIFO_ENTRIES: usize = 64;
-/// Monitor refresh rate. UNVERIFIED: the pixel clock comes from the DAC's PLL, which is
-/// not modelled; the spec's tables assume 640x480 at 60 Hz.
-pub const REFRESH_HZ: u64 = 60;
-/// Lines of vertical sync and of the whole frame when `vSync` is not set: VESA
-/// 640x480 at 60 Hz (2 of 525).
-const DEFAULT_VSYNC_LINES: (u64, u64) = (2, 525);
+pub use crate::video::{Frame, REFRESH_HZ};
 /// The count's clock (and the host time it charges) stops here (1/16 clock; 2^58 clocks,
 /// 183 years at 50 MHz): however long the waits a trace asks for, no count overflows.
 pub const HOST_CLOCK_MAX: u64 = 1 << 62;
@@ -145,6 +147,9 @@ pub struct Timing {
     /// What the host sees: the status register from the same costs, played out in time.
     #[serde(skip)]
     host: HostView,
+    /// The video frame the retrace follows (from the video registers and the DAC).
+    #[serde(skip)]
+    frame: Frame,
 }
 
 /// The board as the host's bus accesses see it in time (1/16 clock since power-on): when
@@ -167,50 +172,6 @@ struct HostView {
     last_taken: u64,
     /// When the last synchronised swap happened.
     last_swap: u64,
-}
-
-/// Vertical retrace in time (1/16 clock): one frame every [`REFRESH_HZ`]-th of a
-/// second, the retrace at the end of each frame for the `vSync` register's share of
-/// its lines (spec 5.39: `vSync_on` lines of `vSync_on + vSync_off`), so that the board
-/// starts outside it (spec 5.1: bit 6 defaults to 1).
-#[derive(Clone, Copy, Debug)]
-struct Retrace {
-    period: u64,
-    active: u64,
-}
-
-impl Retrace {
-    fn new(clock_hz: u64, vsync: u32) -> Self {
-        let (on, off) = (u64::from(vsync & 0xfff), u64::from((vsync >> 16) & 0xfff));
-        let (on, total) = if on + off == 0 {
-            DEFAULT_VSYNC_LINES
-        } else {
-            (on, on + off)
-        };
-        let period = (clock_hz * SUB / REFRESH_HZ).max(1);
-        Self {
-            period,
-            active: period * on / total,
-        }
-    }
-
-    /// Whether the retrace is active at `t`.
-    fn active_at(self, t: u64) -> bool {
-        (t + self.active) % self.period < self.active
-    }
-
-    /// When a swap taken at `taken`, synchronised to retrace with `interval`
-    /// (`swapbufferCMD` bits 8:1), happens: at a retrace (at once if one is active),
-    /// and not before more than `interval` retraces have begun since the last swap
-    /// (spec 5.24).
-    fn swap_time(self, taken: u64, last_swap: u64, interval: u64) -> u64 {
-        // In time shifted by the retrace's length, retraces begin at whole periods.
-        let (p, a) = (self.period, self.active);
-        let u = taken + a;
-        let next = if u % p < a { u } else { (u / p + 1) * p };
-        let counted = ((last_swap + a) / p + interval + 1) * p;
-        next.max(counted) - a
-    }
 }
 
 impl HostView {
@@ -291,6 +252,7 @@ impl Default for Timing {
             fraction: 0,
             last_swap: 0,
             host: HostView::default(),
+            frame: Frame::power_on(DEFAULT_CLOCK_HZ),
         }
     }
 }
@@ -329,9 +291,8 @@ impl Timing {
     /// meanwhile and a `status` read after it sees that; the count charges it as feed
     /// time of the next command (a command costs the longer of its bus and host time
     /// and its engine time). Saturating: a wait of any length costs constant time.
-    pub(crate) fn host_wait(&mut self, cycles: u64, vsync: u32) {
-        self.host
-            .wait(cycles, Retrace::new(self.clock_hz, vsync).period);
+    pub(crate) fn host_wait(&mut self, cycles: u64) {
+        self.host.wait(cycles, self.frame.period);
         let sub = cycles.saturating_mul(SUB).min(HOST_CLOCK_MAX);
         self.pending_wait = self.pending_wait.saturating_add(sub).min(HOST_CLOCK_MAX);
     }
@@ -341,12 +302,11 @@ impl Timing {
     /// space (bits 5:0), FBI, TREX and SST-1 busy (bits 7, 8, 9) and swaps pending
     /// (bits 30:28) come from the model. The memory FIFO is not modelled (bits 27:12
     /// read it empty).
-    pub(crate) fn status(&mut self, fbi_bits: u32, vsync: u32) -> u32 {
-        let retrace = Retrace::new(self.clock_hz, vsync);
+    pub(crate) fn status(&mut self, fbi_bits: u32) -> u32 {
         let h = &mut self.host;
         h.settle();
         // Bit 6: 0 while the vertical retrace is active.
-        let vretrace = u32::from(!retrace.active_at(h.now)) << 6;
+        let vretrace = u32::from(!self.frame.retrace_at(h.now)) << 6;
         let free = (PCI_FIFO_ENTRIES - h.fifo.len()).min(0x3f) as u32;
         let fbi_busy = h.engine_free > h.now;
         let tmu_busy = h.tmu_free > h.now;
@@ -359,6 +319,23 @@ impl Timing {
             | u32::from(tmu_busy) << 8
             | u32::from(sst_busy) << 9
             | swaps << 28
+    }
+
+    /// The video registers or the DAC changed: the frame the retrace follows from now on
+    /// (`video` module; its phase is counted from power-on).
+    pub(crate) fn set_video(&mut self, regs: VideoRegs, dac: &Dac) {
+        self.frame = Frame::new(self.clock_hz, regs, dac);
+    }
+
+    /// The video frame the retrace and `vRetrace` follow.
+    pub fn frame(&self) -> Frame {
+        self.frame
+    }
+
+    /// The `vRetrace` register (spec 5.37) at the host's present time: the scan line
+    /// since the end of the last vertical sync.
+    pub(crate) fn v_retrace(&self) -> u32 {
+        self.frame.v_retrace(self.host.now)
     }
 
     /// A triangle command ran.
@@ -395,9 +372,9 @@ impl Timing {
     }
 
     /// A SWAPBUFFER ended the frame.
-    /// `value` is what was written to `swapbufferCMD`; `vsync` the `vSync` register.
-    pub(crate) fn swap(&mut self, value: u32, vsync: u32) {
-        let retrace = Retrace::new(self.clock_hz, vsync);
+    /// `value` is what was written to `swapbufferCMD`.
+    pub(crate) fn swap(&mut self, value: u32) {
+        let retrace = self.frame;
         let synced = value & 1 != 0;
         let interval = u64::from((value >> 1) & 0xff);
         // The host's view: the swap is pending, and the engine waits, until it happens.
@@ -501,7 +478,7 @@ mod tests {
         });
         assert_eq!(t.cycles(), 24 + 60); // (960 + 14) / 16 = 60, 14/16 carried
         assert_eq!(t.current_frame().bus_bound, 2);
-        t.swap(0, 0);
+        t.swap(0);
         assert_eq!(t.frames.len(), 1);
         assert_eq!(t.frames[0].cycles, 84);
         assert_eq!(t.total.triangles, 84);
@@ -514,11 +491,11 @@ mod tests {
     fn status_reads_busy_until_the_engine_is_done_and_the_fifo_fills() {
         let mut t = Timing::default();
         // Idle: FIFO empty (0x3f), nothing busy.
-        assert_eq!(t.status(0x40, 0), 0x40 | 0x3f);
+        assert_eq!(t.status(0x40), 0x40 | 0x3f);
         // A fill of 640x480 (172,500 clocks) started by one write.
         t.write();
         t.fastfill(640 * 480, 480);
-        let s = t.status(0, 0);
+        let s = t.status(0);
         assert_eq!(s & 0x380, 0x280, "FBI and SST-1 busy, TREX idle: {s:#x}");
         // 100 writes while it runs: the FIFO holds 64, the host waits for the rest, so
         // the fill is over when the last is written, and the 64 writes after it are
@@ -526,38 +503,38 @@ mod tests {
         for _ in 0..20 {
             t.write();
         }
-        assert_eq!(t.status(0, 0) & 0x3f, 64 - 20);
+        assert_eq!(t.status(0) & 0x3f, 64 - 20);
         for _ in 0..80 {
             t.write();
         }
-        let s = t.status(0, 0);
+        let s = t.status(0);
         assert_eq!(s & 0x3f, 0x3f, "{s:#x}");
         assert_eq!(s & 0x380, 0);
         // A swap is pending until the engine takes it.
         t.write();
         t.fastfill(640 * 480, 480);
         t.write();
-        t.swap(0, 0);
-        assert_eq!((t.status(0, 0) >> 28) & 7, 1);
+        t.swap(0);
+        assert_eq!((t.status(0) >> 28) & 7, 1);
         let mut reads = 0;
-        while t.status(0, 0) & 0x200 != 0 {
+        while t.status(0) & 0x200 != 0 {
             t.read();
             reads += 1;
         }
         // 172,500 clocks at 4.5 clocks a read.
         assert_eq!(reads, 172_500 * 16 / PCI_CLOCKS_PER_READ as usize);
-        assert_eq!((t.status(0, 0) >> 28) & 7, 0);
+        assert_eq!((t.status(0) >> 28) & 7, 0);
     }
 
     #[test]
     fn huge_waits_keep_the_retrace_phase_and_never_overflow() {
         let mut t = Timing::default();
-        let period = Retrace::new(DEFAULT_CLOCK_HZ, 0).period;
+        let period = Frame::power_on(DEFAULT_CLOCK_HZ).period;
         t.write();
         t.fastfill(640 * 480, 480);
         let mut exact = u128::from(t.host.now);
         for cycles in [u64::MAX, 1 << 50, u64::MAX, 12_345, u64::MAX] {
-            t.host_wait(cycles, 0);
+            t.host_wait(cycles);
             // A wait over WAIT_MAX is shortened by whole frames.
             let sub = u128::from(cycles) * 16;
             let played = if sub > u128::from(WAIT_MAX) {
@@ -572,23 +549,23 @@ mod tests {
                 exact % u128::from(period),
                 "the retrace keeps its phase"
             );
-            assert_eq!(t.status(0, 0) & 0x3bf, 0x3f, "idle after the wait");
+            assert_eq!(t.status(0) & 0x3bf, 0x3f, "idle after the wait");
         }
         // The count saturates.
         t.write();
-        t.swap(0, 0);
+        t.swap(0);
         assert_eq!(t.frames[0].host_wait, HOST_CLOCK_MAX / SUB);
         assert!(t.cycles() < u64::MAX);
     }
 
     #[test]
     fn synchronised_swaps_wait_for_the_retraces_their_interval_asks_for() {
-        let r = Retrace::new(DEFAULT_CLOCK_HZ, 0);
+        let r = Frame::power_on(DEFAULT_CLOCK_HZ);
         let period = DEFAULT_CLOCK_HZ * SUB / REFRESH_HZ;
         assert_eq!(r.period, period);
-        assert_eq!(r.active, period * 2 / 525);
-        assert!(!r.active_at(0) && r.active_at(period - 1) && !r.active_at(period));
-        let first = period - r.active;
+        assert_eq!(r.retrace, period * 2 / 525);
+        assert!(!r.retrace_at(0) && r.retrace_at(period - 1) && !r.retrace_at(period));
+        let first = period - r.retrace;
         // Interval 0: the next retrace; during one, at once.
         assert_eq!(r.swap_time(0, 0, 0), first);
         assert_eq!(r.swap_time(first + 5, 0, 0), first + 5);
@@ -597,7 +574,7 @@ mod tests {
         // The count: a frame that swaps at once on an idle board waits for the retrace.
         let mut t = Timing::default();
         t.write();
-        t.swap(1, 0);
+        t.swap(1);
         // (The swap write itself is part of the wait from the board's clock.)
         assert_eq!(
             t.frames[0].retrace_wait,
@@ -605,17 +582,17 @@ mod tests {
         );
         // Unsynchronised swaps do not wait.
         t.write();
-        t.swap(0, 0);
+        t.swap(0);
         assert_eq!(t.frames[1].retrace_wait, 0);
         // The host sees the swap pending until the retrace.
         let mut t = Timing::default();
         t.write();
-        t.swap(1 | 2 << 1, 0);
-        assert_eq!((t.status(0, 0) >> 28) & 7, 1);
-        while (t.status(0, 0) >> 28) & 7 != 0 {
+        t.swap(1 | 2 << 1);
+        assert_eq!((t.status(0) >> 28) & 7, 1);
+        while (t.status(0) >> 28) & 7 != 0 {
             t.read();
         }
         assert!(t.host.now >= first + 2 * period);
-        assert_eq!(t.status(0, 0) & 0x40, 0, "swapped during the retrace");
+        assert_eq!(t.status(0) & 0x40, 0, "swapped during the retrace");
     }
 }
