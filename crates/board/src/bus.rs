@@ -4,7 +4,7 @@
 use crate::box86;
 use crate::diagnostics::Diagnostic;
 use crate::model::{with_model, ChipModel};
-use crate::timing::TriangleWork;
+use crate::timing::{MemoryFifo, TriangleWork};
 use crate::video::VideoRegs;
 use crate::Board;
 use pixelfx::{Command, NoTexture};
@@ -86,6 +86,13 @@ impl Board {
                 self.video_changed();
             }
             addr::H_SYNC | addr::V_SYNC | addr::FBI_INIT1 => self.video_changed(),
+            addr::FBI_INIT0 | addr::FBI_INIT4 => {
+                self.timing.set_memory_fifo(MemoryFifo::from_registers(
+                    self.fbi.reg(addr::FBI_INIT0),
+                    self.fbi.reg(addr::FBI_INIT4),
+                    self.config.fbi_mb,
+                ));
+            }
             _ => {}
         }
     }

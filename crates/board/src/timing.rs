@@ -28,6 +28,8 @@
 //! * **Video:** the vertical retrace, which synchronised swaps wait for and `status` bit 6
 //!   reads, follows the frame of the video registers and the DAC's pixel clock
 //!   ([`Frame`], spec 10).
+//! * **Memory FIFO:** with `fbiInit0` bit 13, frame-buffer rows queue writes behind the
+//!   PCI FIFO ([`MemoryFifo`], spec 5.42, 5.46); `status` bits 27:12 read its free space.
 //! * **Host time:** a trace's `wait` ops move the host's clock on between accesses.
 //!
 //! The constants are in 1/16 clock so that the fits need no floating point; the count is
@@ -164,8 +166,13 @@ struct HostView {
     engine_free: u64,
     /// When the TMUs have finished (the last textured triangle).
     tmu_free: u64,
-    /// When each write still in the FIFO is taken, oldest first (at most 64).
+    /// When each write still queued is taken, oldest first: at most 64 in the PCI FIFO,
+    /// and as many as the memory FIFO holds in front of them.
     fifo: VecDeque<u64>,
+    /// How many of the oldest queued writes are in the memory FIFO.
+    in_memory: usize,
+    /// The memory FIFO's size and low water mark (size 0: disabled).
+    memory_fifo: MemoryFifo,
     /// When each swap still pending is taken (at most 64, as the FIFO).
     swaps: VecDeque<u64>,
     /// When the last write was taken.
@@ -174,31 +181,109 @@ struct HostView {
     last_swap: u64,
 }
 
+/// The memory FIFO (spec 3, 5.42, 5.46): off-screen frame-buffer rows that queue the
+/// host's writes behind the PCI FIFO.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MemoryFifo {
+    /// Entries it holds; 0 when disabled.
+    pub entries: usize,
+    /// `fbiInit4` bits 7:2: the PCI FIFO's contents go to memory once its free space
+    /// falls to this.
+    pub low_water_mark: usize,
+}
+
+/// Bytes of one frame-buffer row (a DRAM page) of the memory FIFO.
+const MEMORY_FIFO_ROW_BYTES: usize = 4096;
+/// Bytes of one memory FIFO entry: an address and its data. UNVERIFIED (the spec gives
+/// no entry size; MAME stores the two words).
+const MEMORY_FIFO_ENTRY_BYTES: usize = 8;
+/// The most entries a memory FIFO holds (spec 3: "up to 65536 host writes").
+pub const MEMORY_FIFO_MAX_ENTRIES: usize = 65_536;
+
+impl MemoryFifo {
+    /// The memory FIFO `fbiInit0` and `fbiInit4` set up on a board with `fbi_mb` MiB of
+    /// frame buffer: enabled by `fbiInit0` bit 13 (spec 5.42), rows `fbiInit4` bits 17:8
+    /// to 27:18 (the row start and the row at which its counters roll over, spec 5.46;
+    /// the last clamped to the memory), at most [`MEMORY_FIFO_MAX_ENTRIES`].
+    pub fn from_registers(fbi_init0: u32, fbi_init4: u32, fbi_mb: u32) -> Self {
+        let init0 = sst1_regs::FbiInit0(fbi_init0);
+        let init4 = sst1_regs::FbiInit4(fbi_init4);
+        let rows = (fbi_mb as usize) << 20 >> 12;
+        let start = init4.memory_fifo_row_start() as usize;
+        let last = (init4.memory_fifo_row_rollover() as usize).min(rows.saturating_sub(1));
+        let entries = if init0.memory_fifo_enable() && start <= last {
+            ((last + 1 - start) * MEMORY_FIFO_ROW_BYTES / MEMORY_FIFO_ENTRY_BYTES)
+                .min(MEMORY_FIFO_MAX_ENTRIES)
+        } else {
+            0
+        };
+        Self {
+            entries,
+            low_water_mark: init4.memory_fifo_low_water_mark() as usize,
+        }
+    }
+}
+
 impl HostView {
-    /// Drops what the engine has taken by now.
+    /// Drops what the engine has taken by now (the oldest first: those in memory).
+    #[inline]
     fn settle(&mut self) {
         while self.fifo.front().is_some_and(|&t| t <= self.now) {
             self.fifo.pop_front();
+            self.in_memory = self.in_memory.saturating_sub(1);
         }
         while self.swaps.front().is_some_and(|&t| t <= self.now) {
             self.swaps.pop_front();
         }
     }
 
-    /// A write: it crosses the bus (waiting for room in the FIFO) and is taken when the
-    /// engine has finished what came before.
+    /// Writes in the PCI FIFO.
+    #[inline]
+    fn in_pci(&self) -> usize {
+        self.fifo.len() - self.in_memory
+    }
+
+    /// With the memory FIFO on, the PCI FIFO's contents go to memory (as many as fit)
+    /// once its free space has fallen to the low water mark (spec 5.46: "dump PCI fifo
+    /// contents to memory if PCI fifo freespace falls below this level"; at it, as MAME
+    /// does, so that a mark of 0 dumps a full FIFO).
+    #[inline]
+    fn spill(&mut self) {
+        let m = self.memory_fifo;
+        if m.entries > 0
+            && PCI_FIFO_ENTRIES - self.in_pci().min(PCI_FIFO_ENTRIES) <= m.low_water_mark
+        {
+            self.in_memory += self.in_pci().min(m.entries.saturating_sub(self.in_memory));
+        }
+    }
+
+    /// A write: it crosses the bus (waiting for room in the PCI FIFO, which the memory
+    /// FIFO makes behind it) and is taken when the engine has finished what came before.
     fn write(&mut self) {
         self.now += PCI_CLOCKS_PER_WRITE;
         self.settle();
-        if self.fifo.len() >= PCI_FIFO_ENTRIES {
-            if let Some(t) = self.fifo.pop_front() {
-                self.now = self.now.max(t);
+        self.spill();
+        while self.in_pci() >= PCI_FIFO_ENTRIES {
+            // Full: wait for the oldest write to be taken.
+            match self.fifo.pop_front() {
+                Some(t) => self.now = self.now.max(t),
+                None => break,
             }
+            self.in_memory = self.in_memory.saturating_sub(1);
             self.settle();
+            self.spill();
         }
         let taken = self.now.max(self.engine_free);
         self.fifo.push_back(taken);
         self.last_taken = taken;
+        self.spill();
+    }
+
+    /// The memory FIFO is set up anew: what it held stays queued, in memory as far as
+    /// it fits.
+    fn set_memory_fifo(&mut self, m: MemoryFifo) {
+        self.memory_fifo = m;
+        self.in_memory = self.in_memory.min(m.entries);
     }
 
     /// Host time passes without a bus access: `cycles` graphics clocks; the engine
@@ -307,12 +392,19 @@ impl Timing {
         h.settle();
         // Bit 6: 0 while the vertical retrace is active.
         let vretrace = u32::from(!self.frame.retrace_at(h.now)) << 6;
-        let free = (PCI_FIFO_ENTRIES - h.fifo.len()).min(0x3f) as u32;
+        let free = PCI_FIFO_ENTRIES.saturating_sub(h.in_pci()).min(0x3f) as u32;
+        // Bits 27:12: the memory FIFO's free entries, when it is on (0xffff: empty).
+        let memory = if h.memory_fifo.entries > 0 {
+            ((h.memory_fifo.entries - h.in_memory).min(0xffff) as u32) << 12
+        } else {
+            fbi_bits & 0xffff << 12
+        };
         let fbi_busy = h.engine_free > h.now;
         let tmu_busy = h.tmu_free > h.now;
         let swaps = h.swaps.len().min(7) as u32;
         let sst_busy = fbi_busy || tmu_busy || !h.fifo.is_empty();
-        (fbi_bits & !(0x3f | 0x40 | 0x380 | 0x7 << 28))
+        (fbi_bits & !(0x3f | 0x40 | 0x380 | 0xffff << 12 | 0x7 << 28))
+            | memory
             | free
             | vretrace
             | u32::from(fbi_busy) << 7
@@ -325,6 +417,16 @@ impl Timing {
     /// (`video` module; its phase is counted from power-on).
     pub(crate) fn set_video(&mut self, regs: VideoRegs, dac: &Dac) {
         self.frame = Frame::new(self.clock_hz, regs, dac);
+    }
+
+    /// `fbiInit0` or `fbiInit4` changed: the memory FIFO they set up from now on.
+    pub(crate) fn set_memory_fifo(&mut self, m: MemoryFifo) {
+        self.host.set_memory_fifo(m);
+    }
+
+    /// The memory FIFO the host's writes queue in behind the PCI FIFO.
+    pub fn memory_fifo(&self) -> MemoryFifo {
+        self.host.memory_fifo
     }
 
     /// The video frame the retrace and `vRetrace` follow.
@@ -524,6 +626,60 @@ mod tests {
         // 172,500 clocks at 4.5 clocks a read.
         assert_eq!(reads, 172_500 * 16 / PCI_CLOCKS_PER_READ as usize);
         assert_eq!((t.status(0) >> 28) & 7, 0);
+    }
+
+    #[test]
+    fn the_memory_fifo_queues_writes_behind_a_full_pci_fifo() {
+        // Glide's set-up on 4 MiB: rows 450 to 1023 (293,888 entries, capped at 65,536),
+        // low water mark 23.
+        let init0 = 1 << 13;
+        let init4 = 0x3ff << 18 | 450 << 8 | 23 << 2 | 1;
+        let glide = MemoryFifo::from_registers(init0, init4, 4);
+        assert_eq!(glide.entries, MEMORY_FIFO_MAX_ENTRIES);
+        assert_eq!(glide.low_water_mark, 23);
+        // Off without fbiInit0 bit 13, or with the rows the wrong way round; on 2 MiB the
+        // rows stop at 511.
+        assert_eq!(MemoryFifo::from_registers(0, init4, 4).entries, 0);
+        assert_eq!(
+            MemoryFifo::from_registers(init0, 9 << 18 | 10 << 8, 4).entries,
+            0
+        );
+        assert_eq!(
+            MemoryFifo::from_registers(init0, 0x3ff << 18 | 500 << 8, 2).entries,
+            12 * 512
+        );
+
+        let status = |t: &mut Timing| {
+            let s = t.status(0xffff << 12);
+            (s & 0x3f, s >> 12 & 0xffff, s & 0x200 != 0)
+        };
+        let mut t = Timing::default();
+        assert_eq!(status(&mut t), (0x3f, 0xffff, false), "off: the FBI's bits");
+        // One row: 512 entries.
+        t.set_memory_fifo(MemoryFifo {
+            entries: 512,
+            low_water_mark: 23,
+        });
+        assert_eq!(status(&mut t), (0x3f, 512, false));
+        t.write();
+        t.fastfill(640 * 480, 480);
+        // 100 writes behind the fill: each time 41 are in the PCI FIFO (23 free) they go
+        // to memory: 82 there, 18 in the PCI FIFO.
+        for _ in 0..100 {
+            t.write();
+        }
+        assert_eq!(status(&mut t), (64 - 18, 512 - 82, true));
+        // Up to 576 (512 + 64) queue without the host waiting.
+        for _ in 100..576 {
+            t.write();
+        }
+        assert_eq!(status(&mut t), (0, 0, true));
+        let before = t.host.now;
+        assert!(before < t.host.engine_free, "the host has not waited");
+        // The 577th waits for the fill to end; then everything is taken at once.
+        t.write();
+        assert!(t.host.now >= t.host.engine_free);
+        assert_eq!(status(&mut t), (0x3f, 512, false));
     }
 
     #[test]
