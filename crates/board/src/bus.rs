@@ -76,7 +76,9 @@ impl Board {
             Command::Fastfill => self.fastfill::<M>(),
             Command::Swap => {
                 self.fbi.swap();
-                self.timing.swap(value);
+                if self.timing_on {
+                    self.timing.swap(value);
+                }
             }
         }
         // The frame's timing follows the video registers and the DAC (spec 10).
@@ -140,6 +142,9 @@ impl Board {
         if let Some(saved) = saved {
             saved.restore(&mut self.fbi, &mut self.tmus);
         }
+        if !self.timing_on {
+            return;
+        }
         let after = self.fbi.stats;
         let am = sst1_regs::AlphaMode(self.fbi.reg(addr::ALPHA_MODE));
         self.timing.triangle(TriangleWork {
@@ -163,7 +168,9 @@ impl Board {
             0
         };
         self.fbi.fastfill::<M>();
-        self.timing.fastfill(pixels, if writes { rows } else { 0 });
+        if self.timing_on {
+            self.timing.fastfill(pixels, if writes { rows } else { 0 });
+        }
     }
 
     fn write_texture(&mut self, bus_addr: u32, value: u32) {
@@ -179,7 +186,9 @@ impl Board {
 impl Board {
     /// A bus write, run by model `M` (the board's).
     fn write32_as<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
-        self.timing.write();
+        if self.timing_on {
+            self.timing.write();
+        }
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             self.write_register::<M>(bus_addr, value);
@@ -198,7 +207,9 @@ impl RegisterBus for Board {
     }
 
     fn read32(&mut self, bus_addr: u32) -> u32 {
-        self.timing.read();
+        if self.timing_on {
+            self.timing.read();
+        }
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             // Reads ignore the chip field and always come from the FBI (spec 5).
@@ -211,6 +222,7 @@ impl RegisterBus for Board {
                 }
             };
             match offset & 0x3fc {
+                _ if !self.timing_on => value,
                 // FIFO, busy, retrace and swap bits from the timing model.
                 addr::STATUS => self.timing.status(value),
                 // The scan line from the video timing (spec 5.37).
@@ -226,7 +238,9 @@ impl RegisterBus for Board {
     }
 
     fn host_wait(&mut self, cycles: u64) {
-        self.timing.host_wait(cycles);
+        if self.timing_on {
+            self.timing.host_wait(cycles);
+        }
     }
 
     fn pci_write(&mut self, offset: u32, value: u32) {

@@ -113,6 +113,8 @@ pub struct Board {
     timing: Timing,
     /// The DAC's PLL registers (the pixel clock), as `dacData` writes set them.
     dac: video::Dac,
+    /// Whether the timing model runs ([`Board::set_timing`]).
+    timing_on: bool,
 }
 
 impl Board {
@@ -131,6 +133,7 @@ impl Board {
             model: Model::Hardware,
             timing: Timing::default(),
             dac: video::Dac::default(),
+            timing_on: true,
         }
     }
 
@@ -138,6 +141,21 @@ impl Board {
     /// see [`timing`]).
     pub fn timing(&self) -> &Timing {
         &self.timing
+    }
+
+    /// Run the timing model (the default) or not. Off, the board counts no cycles and
+    /// plays nothing out in time: `status` reads the FBI's own bits (idle, FIFOs empty,
+    /// never in vertical retrace, swaps never pending), `vRetrace` reads 0 and `wait` ops
+    /// do nothing. Pixels, counters and diagnostics are the same either way; this is for
+    /// measuring what the model costs (`voodoo replay --no-timing`, the `replay`
+    /// bench). Choose before the first access.
+    pub fn set_timing(&mut self, on: bool) {
+        self.timing_on = on;
+    }
+
+    /// Whether the timing model runs.
+    pub fn timing_enabled(&self) -> bool {
+        self.timing_on
     }
 
     /// The board configuration.

@@ -76,6 +76,11 @@ enum Command {
         /// `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see docs/accuracy.md).
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
+        /// Run without the timing model (one-board models only): the same pixels and
+        /// counters, no cycles counted, `status` always idle (docs/timing.md: what the
+        /// model costs).
+        #[arg(long)]
+        no_timing: bool,
     },
     /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
     /// against reference emulators' goldens with the conformance pass rule: every pixel
@@ -181,14 +186,18 @@ fn main() -> ExitCode {
             stats,
             stats_json,
             profile,
+            no_timing,
         } => resolve_model(model, profile.as_deref()).and_then(|profile| {
+            if no_timing && profile.is_none() {
+                return Err("--no-timing needs a one-board model (not --model vote)".into());
+            }
             replay(
                 &trace,
                 out.as_deref(),
                 png.as_deref(),
                 stats,
                 stats_json.as_deref(),
-                profile,
+                profile.map(|p| (p, !no_timing)),
             )
         }),
         Command::Check {
@@ -272,12 +281,12 @@ struct Replayed {
     front: Vec<u16>,
 }
 
-/// Runs a streamed trace on one board with `profile`, or on one board per reference
-/// emulator and votes (`None`), handing each dump (voted) to `sink` when it is reached,
-/// with a progress counter when stderr is a terminal.
+/// Runs a streamed trace on one board with `profile` (and the timing model on or off),
+/// or on one board per reference emulator and votes (`None`), handing each dump (voted)
+/// to `sink` when it is reached, with a progress counter when stderr is a terminal.
 fn run(
     stream: TraceStream<'_>,
-    profile: Option<AccuracyProfile>,
+    profile: Option<(AccuracyProfile, bool)>,
     mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
 ) -> Result<Replayed, String> {
     let bar = if std::io::stderr().is_terminal() {
@@ -292,9 +301,10 @@ fn run(
     let progress = |done: usize| bar.set_position(done as u64);
     let config = stream.config();
     let replayed = match profile {
-        Some(profile) => {
+        Some((profile, timing)) => {
             let mut board = Board::new(config);
             board.set_profile(profile);
+            board.set_timing(timing);
             execute_stream(stream, &mut board, progress, sink).map(|_| {
                 let front = board.dump_buffer(BufferKind::Front);
                 Replayed { board, front }
@@ -423,7 +433,7 @@ fn replay(
     png: Option<&Path>,
     stats: bool,
     stats_json: Option<&Path>,
-    profile: Option<AccuracyProfile>,
+    profile: Option<(AccuracyProfile, bool)>,
 ) -> Result<(), String> {
     let stream = open_trace(path).map_err(|e| e.to_string())?;
     let mut target = DumpTarget::new(path, out)?;
@@ -510,7 +520,7 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     check_goldens_folder(goldens)?;
     let stream = open_trace(path).map_err(|e| e.to_string())?;
     let (mut consensus, mut majority, mut judged, mut unjudged) = (0, 0, 0, 0);
-    run(stream, profile, |dump| {
+    run(stream, profile.map(|p| (p, true)), |dump| {
         let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
         let found: Vec<(&str, Vec<u16>)> = Reference::ALL
             .iter()
@@ -564,7 +574,7 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
 
 fn demo(png: &Path) -> Result<(), String> {
     let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
-    let replayed = run(stream, Some(AccuracyProfile::default()), |_| Ok(()))?;
+    let replayed = run(stream, Some((AccuracyProfile::default(), true)), |_| Ok(()))?;
     let (w, h) = write_front_png(&replayed, png)?;
     println!(
         "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",
