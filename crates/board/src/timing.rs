@@ -154,10 +154,11 @@ pub struct Timing {
     frame: Frame,
 }
 
-/// The board as the host's bus accesses see it in time (1/16 clock since power-on): when
-/// each write in the PCI FIFO is taken by the engine, and when the engine is done. It
-/// answers the status register (spec 5.1), so the same trace reads the same values on
-/// every run. A write waits while the FIFO is full.
+/// The board as the host's bus accesses see it in time (1/16 clock since power-on, moved
+/// back by whole frames when it grows large): when each queued write is taken by the
+/// engine, and when the engine is done. It answers the status register (spec 5.1), so the
+/// same trace reads the same values on every run. A write waits while the PCI FIFO is
+/// full (with the memory FIFO on: while both are).
 #[derive(Clone, Debug, Default)]
 struct HostView {
     /// The host's time: every access moves it on.
@@ -173,7 +174,7 @@ struct HostView {
     in_memory: usize,
     /// The memory FIFO's size and low water mark (size 0: disabled).
     memory_fifo: MemoryFifo,
-    /// When each swap still pending is taken (at most 64, as the FIFO).
+    /// When each swap still pending happens (at most one per queued write).
     swaps: VecDeque<u64>,
     /// When the last write was taken.
     last_taken: u64,
