@@ -70,6 +70,10 @@ pub trait Port {
     /// One 32-bit write at byte `offset` of PCI configuration space (spec 6).
     fn pci_write(&mut self, offset: u32, value: u32);
 
+    /// Let `cycles` cycles of the 50 MHz graphics clock pass without a bus access (a
+    /// runner on a real board sleeps that long; the emulator's host clock moves on).
+    fn wait(&mut self, cycles: u64);
+
     /// The raw 16-bit value of pixel `(x, y)` of `buffer`, read as a driver reads it:
     /// through an LFB read with no swapping, no swizzling and the Y origin at the top
     /// (spec 5.20.2). `lfbMode` is saved and restored around the read.
@@ -137,6 +141,10 @@ impl Port for Emulator {
 
     fn pci_write(&mut self, offset: u32, value: u32) {
         self.board.pci_write(offset, value);
+    }
+
+    fn wait(&mut self, cycles: u64) {
+        self.board.host_wait(cycles);
     }
 }
 

@@ -2,7 +2,8 @@
 //! contains a command-line filter) on the hardware model's span kernels, on its
 //! generic path, and on the custom model (the switches read at run time, here set to the
 //! hardware model's: what the compile-time model saves) and prints Mpixels/s
-//! (`fbiPixelsIn` per second), triangles/s and the speedups.
+//! (`fbiPixelsIn` per second), triangles/s and the speedups; and the fast path with the
+//! timing model off (`Board::set_timing(false)`), for what the model costs.
 //!
 //! ```text
 //! cargo bench -p sst1-board --bench replay                  # perf_gouraud_heavy, perf_tex_heavy
@@ -51,6 +52,8 @@ enum RunPath {
     Generic,
     /// The custom model with the hardware model's switches, fast path.
     Custom,
+    /// The fast path with the timing model off.
+    NoTiming,
 }
 
 fn run_once(trace: &Trace, path: RunPath) -> (Timing, Stats) {
@@ -59,6 +62,7 @@ fn run_once(trace: &Trace, path: RunPath) -> (Timing, Stats) {
         RunPath::Fast => {}
         RunPath::Generic => board.set_generic_path(true),
         RunPath::Custom => board.set_model(Model::Custom(AccuracyProfile::HARDWARE)),
+        RunPath::NoTiming => board.set_timing(false),
     }
     let cpu0 = thread_cpu_time();
     let start = Instant::now();
@@ -146,11 +150,14 @@ fn main() {
         report("generic", tr, &sr);
         let (tc, sc) = best_of(&trace, RunPath::Custom, iters);
         report("custom", tc, &sc);
+        let (tn, sn) = best_of(&trace, RunPath::NoTiming, iters);
+        report("no timing", tn, &sn);
         println!(
-            "  fast is {:.2}x the generic path, {:.2}x the custom model{}",
+            "  fast is {:.2}x the generic path, {:.2}x the custom model; the timing model costs {:+.2} %{}",
             tr.key().as_secs_f64() / tf.key().as_secs_f64(),
             tc.key().as_secs_f64() / tf.key().as_secs_f64(),
-            if sf == sr && sf == sc {
+            (tf.key().as_secs_f64() / tn.key().as_secs_f64() - 1.0) * 100.0,
+            if sf == sr && sf == sc && sf == sn {
                 ""
             } else {
                 "  (COUNTERS DIFFER)"

@@ -4,7 +4,8 @@
 use crate::box86;
 use crate::diagnostics::Diagnostic;
 use crate::model::{with_model, ChipModel};
-use crate::timing::TriangleWork;
+use crate::timing::{MemoryFifo, TriangleWork};
+use crate::video::VideoRegs;
 use crate::Board;
 use pixelfx::{Command, NoTexture};
 use sst1_chain::Chain;
@@ -75,9 +76,37 @@ impl Board {
             Command::Fastfill => self.fastfill::<M>(),
             Command::Swap => {
                 self.fbi.swap();
-                self.timing.swap(value, self.fbi.reg(addr::V_SYNC));
+                if self.timing_on {
+                    self.timing.swap(value);
+                }
             }
         }
+        // The frame's timing follows the video registers and the DAC (spec 10).
+        match offset {
+            addr::DAC_DATA => {
+                self.dac.write(value);
+                self.video_changed();
+            }
+            addr::H_SYNC | addr::V_SYNC | addr::FBI_INIT1 => self.video_changed(),
+            addr::FBI_INIT0 | addr::FBI_INIT4 => {
+                self.timing.set_memory_fifo(MemoryFifo::from_registers(
+                    self.fbi.reg(addr::FBI_INIT0),
+                    self.fbi.reg(addr::FBI_INIT4),
+                    self.config.fbi_mb,
+                ));
+            }
+            _ => {}
+        }
+    }
+
+    /// Tells the timing model the video registers or the DAC changed.
+    fn video_changed(&mut self) {
+        let regs = VideoRegs {
+            h_sync: self.fbi.reg(addr::H_SYNC),
+            v_sync: self.fbi.reg(addr::V_SYNC),
+            fbi_init1: self.fbi.reg(addr::FBI_INIT1),
+        };
+        self.timing.set_video(regs, &self.dac);
     }
 
     /// Run a triangle command with the TMU chain (spec 5.15).
@@ -113,6 +142,9 @@ impl Board {
         if let Some(saved) = saved {
             saved.restore(&mut self.fbi, &mut self.tmus);
         }
+        if !self.timing_on {
+            return;
+        }
         let after = self.fbi.stats;
         let am = sst1_regs::AlphaMode(self.fbi.reg(addr::ALPHA_MODE));
         self.timing.triangle(TriangleWork {
@@ -136,7 +168,9 @@ impl Board {
             0
         };
         self.fbi.fastfill::<M>();
-        self.timing.fastfill(pixels, if writes { rows } else { 0 });
+        if self.timing_on {
+            self.timing.fastfill(pixels, if writes { rows } else { 0 });
+        }
     }
 
     fn write_texture(&mut self, bus_addr: u32, value: u32) {
@@ -152,7 +186,9 @@ impl Board {
 impl Board {
     /// A bus write, run by model `M` (the board's).
     fn write32_as<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
-        self.timing.write();
+        if self.timing_on {
+            self.timing.write();
+        }
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             self.write_register::<M>(bus_addr, value);
@@ -171,7 +207,9 @@ impl RegisterBus for Board {
     }
 
     fn read32(&mut self, bus_addr: u32) -> u32 {
-        self.timing.read();
+        if self.timing_on {
+            self.timing.read();
+        }
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             // Reads ignore the chip field and always come from the FBI (spec 5).
@@ -183,17 +221,25 @@ impl RegisterBus for Board {
                     self.fbi.read_reg(offset)
                 }
             };
-            if offset & 0x3fc == addr::STATUS {
-                // FIFO, busy and swap bits from the timing model.
-                self.timing.status(value, self.fbi.reg(addr::V_SYNC))
-            } else {
-                value
+            match offset & 0x3fc {
+                _ if !self.timing_on => value,
+                // FIFO, busy, retrace and swap bits from the timing model.
+                addr::STATUS => self.timing.status(value),
+                // The scan line from the video timing (spec 5.37).
+                addr::V_RETRACE => self.timing.v_retrace(),
+                _ => value,
             }
         } else if bus_addr < TEX_BASE {
             self.fbi.lfb_read(bus_addr - LFB_BASE)
         } else {
             // Texture memory is write-only (spec 9).
             0xffff_ffff
+        }
+    }
+
+    fn host_wait(&mut self, cycles: u64) {
+        if self.timing_on {
+            self.timing.host_wait(cycles);
         }
     }
 

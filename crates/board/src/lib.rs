@@ -18,6 +18,7 @@ pub mod model;
 pub mod presets;
 pub mod reference;
 pub mod timing;
+mod video;
 
 use serde::{Deserialize, Serialize};
 
@@ -27,7 +28,7 @@ pub use model::Model;
 pub use pixelfx::{PathCounts, PixelProfile, Stats};
 pub use reference::{vote, Reference};
 pub use texelfx::{TexelProfile, Tmu};
-pub use timing::{FrameTime, Timing};
+pub use timing::{Frame, FrameTime, Timing};
 
 use pixelfx::Fbi;
 
@@ -110,6 +111,10 @@ pub struct Board {
     model: Model,
     /// The modelled hardware time.
     timing: Timing,
+    /// The DAC's PLL registers (the pixel clock), as `dacData` writes set them.
+    dac: video::Dac,
+    /// Whether the timing model runs ([`Board::set_timing`]).
+    timing_on: bool,
 }
 
 impl Board {
@@ -127,6 +132,8 @@ impl Board {
             diagnostics: Diagnostics::default(),
             model: Model::Hardware,
             timing: Timing::default(),
+            dac: video::Dac::default(),
+            timing_on: true,
         }
     }
 
@@ -134,6 +141,21 @@ impl Board {
     /// see [`timing`]).
     pub fn timing(&self) -> &Timing {
         &self.timing
+    }
+
+    /// Run the timing model (the default) or not. Off, the board counts no cycles and
+    /// plays nothing out in time: `status` reads the FBI's own bits (idle, FIFOs empty,
+    /// never in vertical retrace, swaps never pending), `vRetrace` reads 0 and `wait` ops
+    /// do nothing. Pixels, counters and diagnostics are the same either way; this is for
+    /// measuring what the model costs (`voodoo replay --no-timing`, the `replay`
+    /// bench). Choose before the first access.
+    pub fn set_timing(&mut self, on: bool) {
+        self.timing_on = on;
+    }
+
+    /// Whether the timing model runs.
+    pub fn timing_enabled(&self) -> bool {
+        self.timing_on
     }
 
     /// The board configuration.

@@ -25,14 +25,23 @@
 //!   pixels are written per clock") plus [`FILL_ROW_CLOCKS`] per row, fitted to the spec's
 //!   3.45 ms for a 640x480 clear.
 //!
+//! * **Video:** the vertical retrace, which synchronised swaps wait for and `status` bit 6
+//!   reads, follows the frame of the video registers and the DAC's pixel clock
+//!   ([`Frame`], spec 10).
+//! * **Memory FIFO:** with `fbiInit0` bit 13, frame-buffer rows queue writes behind the
+//!   PCI FIFO ([`MemoryFifo`], spec 5.42, 5.46); `status` bits 27:12 read its free space.
+//! * **Host time:** a trace's `wait` ops move the host's clock on between accesses.
+//!
 //! The constants are in 1/16 clock so that the fits need no floating point; the count is
-//! exact and the same on every run (it depends only on the writes, never on the host).
+//! exact and the same on every run (it depends only on the trace, never on the host).
 //! `firmware-tests/tests/timing.rs` builds the spec's scenes and checks every row of its
 //! table; docs/timing.md shows the table.
 
 use std::collections::VecDeque;
 
 use serde::Serialize;
+
+use crate::video::{Dac, VideoRegs};
 
 /// Graphics clock of the boards the spec's table assumes.
 pub const DEFAULT_CLOCK_HZ: u64 = 50_000_000;
@@ -66,12 +75,20 @@ pub const FILL_ROW_CLOCKS: u64 = 630;
 pub const PCI_CLOCKS_PER_READ: u64 = 72;
 /// Entries of the PCI FIFO (spec 3: "an asynchronous FIFO 64 entries deep").
 pub const PCI_FIFO_ENTRIES: usize = 64;
-/// Monitor refresh rate. UNVERIFIED: the pixel clock comes from the DAC's PLL, which is
-/// not modelled; the spec's tables assume 640x480 at 60 Hz.
-pub const REFRESH_HZ: u64 = 60;
-/// Lines of vertical sync and of the whole frame when `vSync` is not set: VESA
-/// 640x480 at 60 Hz (2 of 525).
-const DEFAULT_VSYNC_LINES: (u64, u64) = (2, 525);
+pub use crate::video::{Frame, REFRESH_HZ};
+/// The count's clock (and the host time it charges) stops here (1/16 clock; 2^58 clocks,
+/// 183 years at 50 MHz): however long the waits a trace asks for, no count overflows.
+pub const HOST_CLOCK_MAX: u64 = 1 << 62;
+/// The longest wait the host's view plays out in full (1/16 clock; 2^55 clocks, 22
+/// years at 50 MHz). A longer one is shortened by whole frames, which keeps the
+/// retrace's phase and is long enough for every pending command to be done.
+const WAIT_MAX: u64 = 1 << 59;
+/// When the host's clock passes this (1/16 clock), every time the view holds is moved
+/// back by whole frames, so the clock never overflows however many waits a trace has.
+const REBASE_AT: u64 = 1 << 60;
+/// Frames of the host's past that a rebase keeps: more than the longest swap interval
+/// (255) looks back.
+const REBASE_KEEP_FRAMES: u64 = 257;
 
 /// Where one frame's (or the whole replay's) modelled time went, in graphics clocks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
@@ -86,15 +103,19 @@ pub struct FrameTime {
     pub bus_bound: u64,
     /// Cycles of the SWAPBUFFER command: waiting for vertical retrace.
     pub retrace_wait: u64,
+    /// Cycles where the host's own time (a trace's `wait` lines), not the engine, was
+    /// the limit (included in the above, not in `bus_bound`).
+    pub host_wait: u64,
 }
 
 impl FrameTime {
     fn add(&mut self, o: &FrameTime) {
-        self.cycles += o.cycles;
-        self.triangles += o.triangles;
-        self.fills += o.fills;
-        self.bus_bound += o.bus_bound;
-        self.retrace_wait += o.retrace_wait;
+        self.cycles = self.cycles.saturating_add(o.cycles);
+        self.triangles = self.triangles.saturating_add(o.triangles);
+        self.fills = self.fills.saturating_add(o.fills);
+        self.bus_bound = self.bus_bound.saturating_add(o.bus_bound);
+        self.retrace_wait = self.retrace_wait.saturating_add(o.retrace_wait);
+        self.host_wait = self.host_wait.saturating_add(o.host_wait);
     }
 }
 
@@ -116,6 +137,9 @@ pub struct Timing {
     /// Bus time (1/16 clock) of the writes since the last command.
     #[serde(skip)]
     pending_bus: u64,
+    /// Host time (1/16 clock, trace `wait` lines) since the last command.
+    #[serde(skip)]
+    pending_wait: u64,
     /// Sub-clock remainder carried between commands (1/16 clock).
     #[serde(skip)]
     fraction: u64,
@@ -125,12 +149,16 @@ pub struct Timing {
     /// What the host sees: the status register from the same costs, played out in time.
     #[serde(skip)]
     host: HostView,
+    /// The video frame the retrace follows (from the video registers and the DAC).
+    #[serde(skip)]
+    frame: Frame,
 }
 
-/// The board as the host's bus accesses see it in time (1/16 clock since power-on): when
-/// each write in the PCI FIFO is taken by the engine, and when the engine is done. It
-/// answers the status register (spec 5.1), so the same trace reads the same values on
-/// every run. A write waits while the FIFO is full.
+/// The board as the host's bus accesses see it in time (1/16 clock since power-on, moved
+/// back by whole frames when it grows large): when each queued write is taken by the
+/// engine, and when the engine is done. It answers the status register (spec 5.1), so the
+/// same trace reads the same values on every run. A write waits while the PCI FIFO is
+/// full (with the memory FIFO on: while both are).
 #[derive(Clone, Debug, Default)]
 struct HostView {
     /// The host's time: every access moves it on.
@@ -139,9 +167,14 @@ struct HostView {
     engine_free: u64,
     /// When the TMUs have finished (the last textured triangle).
     tmu_free: u64,
-    /// When each write still in the FIFO is taken, oldest first (at most 64).
+    /// When each write still queued is taken, oldest first: at most 64 in the PCI FIFO,
+    /// and as many as the memory FIFO holds in front of them.
     fifo: VecDeque<u64>,
-    /// When each swap still pending is taken (at most 64, as the FIFO).
+    /// How many of the oldest queued writes are in the memory FIFO.
+    in_memory: usize,
+    /// The memory FIFO's size and low water mark (size 0: disabled).
+    memory_fifo: MemoryFifo,
+    /// When each swap still pending happens (at most one per queued write).
     swaps: VecDeque<u64>,
     /// When the last write was taken.
     last_taken: u64,
@@ -149,75 +182,166 @@ struct HostView {
     last_swap: u64,
 }
 
-/// Vertical retrace in time (1/16 clock): one frame every [`REFRESH_HZ`]-th of a
-/// second, the retrace at the end of each frame for the `vSync` register's share of
-/// its lines (spec 5.39: `vSync_on` lines of `vSync_on + vSync_off`), so that the board
-/// starts outside it (spec 5.1: bit 6 defaults to 1).
-#[derive(Clone, Copy, Debug)]
-struct Retrace {
-    period: u64,
-    active: u64,
+/// The memory FIFO (spec 3, 5.42, 5.46): off-screen frame-buffer rows that queue the
+/// host's writes behind the PCI FIFO.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MemoryFifo {
+    /// Entries it holds; 0 when disabled.
+    pub entries: usize,
+    /// `fbiInit4` bits 7:2: the PCI FIFO's contents go to memory once its free space
+    /// falls to this.
+    pub low_water_mark: usize,
 }
 
-impl Retrace {
-    fn new(clock_hz: u64, vsync: u32) -> Self {
-        let (on, off) = (u64::from(vsync & 0xfff), u64::from((vsync >> 16) & 0xfff));
-        let (on, total) = if on + off == 0 {
-            DEFAULT_VSYNC_LINES
+/// Bytes of one frame-buffer row (a DRAM page) of the memory FIFO.
+const MEMORY_FIFO_ROW_BYTES: usize = 4096;
+/// Bytes of one memory FIFO entry: an address and its data. UNVERIFIED (the spec gives
+/// no entry size; MAME stores the two words).
+const MEMORY_FIFO_ENTRY_BYTES: usize = 8;
+/// The most entries a memory FIFO holds (spec 3: "up to 65536 host writes").
+pub const MEMORY_FIFO_MAX_ENTRIES: usize = 65_536;
+
+impl MemoryFifo {
+    /// The memory FIFO `fbiInit0` and `fbiInit4` set up on a board with `fbi_mb` MiB of
+    /// frame buffer: enabled by `fbiInit0` bit 13 (spec 5.42), rows `fbiInit4` bits 17:8
+    /// to 27:18 (the row start and the row at which its counters roll over, spec 5.46;
+    /// the last clamped to the memory), at most [`MEMORY_FIFO_MAX_ENTRIES`].
+    pub fn from_registers(fbi_init0: u32, fbi_init4: u32, fbi_mb: u32) -> Self {
+        let init0 = sst1_regs::FbiInit0(fbi_init0);
+        let init4 = sst1_regs::FbiInit4(fbi_init4);
+        let rows = (fbi_mb as usize) << 20 >> 12;
+        let start = init4.memory_fifo_row_start() as usize;
+        let last = (init4.memory_fifo_row_rollover() as usize).min(rows.saturating_sub(1));
+        let entries = if init0.memory_fifo_enable() && start <= last {
+            ((last + 1 - start) * MEMORY_FIFO_ROW_BYTES / MEMORY_FIFO_ENTRY_BYTES)
+                .min(MEMORY_FIFO_MAX_ENTRIES)
         } else {
-            (on, on + off)
+            0
         };
-        let period = (clock_hz * SUB / REFRESH_HZ).max(1);
         Self {
-            period,
-            active: period * on / total,
+            entries,
+            low_water_mark: init4.memory_fifo_low_water_mark() as usize,
         }
-    }
-
-    /// Whether the retrace is active at `t`.
-    fn active_at(self, t: u64) -> bool {
-        (t + self.active) % self.period < self.active
-    }
-
-    /// When a swap taken at `taken`, synchronised to retrace with `interval`
-    /// (`swapbufferCMD` bits 8:1), happens: at a retrace (at once if one is active),
-    /// and not before more than `interval` retraces have begun since the last swap
-    /// (spec 5.24).
-    fn swap_time(self, taken: u64, last_swap: u64, interval: u64) -> u64 {
-        // In time shifted by the retrace's length, retraces begin at whole periods.
-        let (p, a) = (self.period, self.active);
-        let u = taken + a;
-        let next = if u % p < a { u } else { (u / p + 1) * p };
-        let counted = ((last_swap + a) / p + interval + 1) * p;
-        next.max(counted) - a
     }
 }
 
 impl HostView {
-    /// Drops what the engine has taken by now.
+    /// Drops what the engine has taken by now (the oldest first: those in memory).
+    #[inline]
     fn settle(&mut self) {
         while self.fifo.front().is_some_and(|&t| t <= self.now) {
             self.fifo.pop_front();
+            self.in_memory = self.in_memory.saturating_sub(1);
         }
         while self.swaps.front().is_some_and(|&t| t <= self.now) {
             self.swaps.pop_front();
         }
     }
 
-    /// A write: it crosses the bus (waiting for room in the FIFO) and is taken when the
-    /// engine has finished what came before.
+    /// Writes in the PCI FIFO.
+    #[inline]
+    fn in_pci(&self) -> usize {
+        self.fifo.len() - self.in_memory
+    }
+
+    /// With the memory FIFO on, the PCI FIFO's contents go to memory (as many as fit)
+    /// once its free space has fallen to the low water mark (spec 5.46: "dump PCI fifo
+    /// contents to memory if PCI fifo freespace falls below this level"; at it, as MAME
+    /// does, so that a mark of 0 dumps a full FIFO).
+    #[inline]
+    fn spill(&mut self) {
+        let m = self.memory_fifo;
+        if m.entries > 0
+            && PCI_FIFO_ENTRIES - self.in_pci().min(PCI_FIFO_ENTRIES) <= m.low_water_mark
+        {
+            self.in_memory += self.in_pci().min(m.entries.saturating_sub(self.in_memory));
+        }
+    }
+
+    /// A write: it crosses the bus (waiting for room in the PCI FIFO, which the memory
+    /// FIFO makes behind it) and is taken when the engine has finished what came before.
+    #[inline]
     fn write(&mut self) {
         self.now += PCI_CLOCKS_PER_WRITE;
+        if self.engine_free <= self.now {
+            // The engine is idle. Every write queued was taken by `engine_free` (the
+            // times taken never decrease), and so was every swap: the queues are empty,
+            // and this write is taken at once. (What the general path below does, in a
+            // few instructions: everything that looks at the queues drops what has been
+            // taken first.)
+            self.fifo.clear();
+            self.swaps.clear();
+            self.in_memory = 0;
+            self.last_taken = self.now;
+            return;
+        }
+        self.write_queued();
+    }
+
+    /// [`HostView::write`] without its idle-engine shortcut (for the test that the
+    /// shortcut changes nothing).
+    #[cfg(test)]
+    fn write_general(&mut self) {
+        self.now += PCI_CLOCKS_PER_WRITE;
+        self.write_queued();
+    }
+
+    /// [`HostView::write`] while the engine is busy.
+    #[inline(never)]
+    fn write_queued(&mut self) {
         self.settle();
-        if self.fifo.len() >= PCI_FIFO_ENTRIES {
-            if let Some(t) = self.fifo.pop_front() {
-                self.now = self.now.max(t);
+        self.spill();
+        while self.in_pci() >= PCI_FIFO_ENTRIES {
+            // Full: wait for the oldest write to be taken.
+            match self.fifo.pop_front() {
+                Some(t) => self.now = self.now.max(t),
+                None => break,
             }
+            self.in_memory = self.in_memory.saturating_sub(1);
             self.settle();
+            self.spill();
         }
         let taken = self.now.max(self.engine_free);
         self.fifo.push_back(taken);
         self.last_taken = taken;
+        self.spill();
+    }
+
+    /// The memory FIFO is set up anew: what it held stays queued, in memory as far as
+    /// it fits.
+    fn set_memory_fifo(&mut self, m: MemoryFifo) {
+        self.memory_fifo = m;
+        self.in_memory = self.in_memory.min(m.entries);
+    }
+
+    /// Host time passes without a bus access: `cycles` graphics clocks; the engine
+    /// drains the FIFO meanwhile. `period` is the frame's (1/16 clock): a wait longer
+    /// than [`WAIT_MAX`] is shortened by whole frames, and the clock is moved back by
+    /// whole frames past [`REBASE_AT`], so nothing overflows and the retrace keeps its
+    /// phase.
+    fn wait(&mut self, cycles: u64, period: u64) {
+        let period = period.max(1);
+        let sub = u128::from(cycles) * u128::from(SUB);
+        let max = u128::from(WAIT_MAX);
+        let sub = if sub > max {
+            max + (sub - max) % u128::from(period)
+        } else {
+            sub
+        };
+        // At most WAIT_MAX + period, below 2^60.
+        self.now += sub as u64;
+        if self.now > REBASE_AT {
+            let keep = REBASE_KEEP_FRAMES.saturating_mul(period).min(REBASE_AT / 2);
+            let shift = (self.now - keep) / period * period;
+            let back = |t: &mut u64| *t = t.saturating_sub(shift);
+            back(&mut self.now);
+            back(&mut self.engine_free);
+            back(&mut self.tmu_free);
+            back(&mut self.last_taken);
+            back(&mut self.last_swap);
+            self.fifo.iter_mut().for_each(back);
+            self.swaps.iter_mut().for_each(back);
+        }
     }
 
     /// The command in the last write keeps the engine busy `engine` (1/16 clock).
@@ -237,9 +361,11 @@ impl Default for Timing {
             frames: Vec::new(),
             current: FrameTime::default(),
             pending_bus: 0,
+            pending_wait: 0,
             fraction: 0,
             last_swap: 0,
             host: HostView::default(),
+            frame: Frame::power_on(DEFAULT_CLOCK_HZ),
         }
     }
 }
@@ -273,29 +399,73 @@ impl Timing {
         self.host.now += PCI_CLOCKS_PER_READ;
     }
 
+    /// Host time passes between bus accesses: `cycles` graphics clocks (a trace's
+    /// `wait` line). The host's clock moves on, so the engine drains what the FIFO holds
+    /// meanwhile and a `status` read after it sees that; the count charges it as feed
+    /// time of the next command (a command costs the longer of its bus and host time
+    /// and its engine time). Saturating: a wait of any length costs constant time.
+    pub(crate) fn host_wait(&mut self, cycles: u64) {
+        self.host.wait(cycles, self.frame.period);
+        let sub = cycles.saturating_mul(SUB).min(HOST_CLOCK_MAX);
+        self.pending_wait = self.pending_wait.saturating_add(sub).min(HOST_CLOCK_MAX);
+    }
+
     /// The `status` register (spec 5.1) at the host's present time: `fbi_bits` is the
     /// FBI's own value, whose retrace and displayed-buffer bits are kept; PCI FIFO free
     /// space (bits 5:0), FBI, TREX and SST-1 busy (bits 7, 8, 9) and swaps pending
     /// (bits 30:28) come from the model. The memory FIFO is not modelled (bits 27:12
     /// read it empty).
-    pub(crate) fn status(&mut self, fbi_bits: u32, vsync: u32) -> u32 {
-        let retrace = Retrace::new(self.clock_hz, vsync);
+    pub(crate) fn status(&mut self, fbi_bits: u32) -> u32 {
         let h = &mut self.host;
         h.settle();
         // Bit 6: 0 while the vertical retrace is active.
-        let vretrace = u32::from(!retrace.active_at(h.now)) << 6;
-        let free = (PCI_FIFO_ENTRIES - h.fifo.len()).min(0x3f) as u32;
+        let vretrace = u32::from(!self.frame.retrace_at(h.now)) << 6;
+        let free = PCI_FIFO_ENTRIES.saturating_sub(h.in_pci()).min(0x3f) as u32;
+        // Bits 27:12: the memory FIFO's free entries, when it is on (0xffff: empty).
+        let memory = if h.memory_fifo.entries > 0 {
+            ((h.memory_fifo.entries - h.in_memory).min(0xffff) as u32) << 12
+        } else {
+            fbi_bits & 0xffff << 12
+        };
         let fbi_busy = h.engine_free > h.now;
         let tmu_busy = h.tmu_free > h.now;
         let swaps = h.swaps.len().min(7) as u32;
         let sst_busy = fbi_busy || tmu_busy || !h.fifo.is_empty();
-        (fbi_bits & !(0x3f | 0x40 | 0x380 | 0x7 << 28))
+        (fbi_bits & !(0x3f | 0x40 | 0x380 | 0xffff << 12 | 0x7 << 28))
+            | memory
             | free
             | vretrace
             | u32::from(fbi_busy) << 7
             | u32::from(tmu_busy) << 8
             | u32::from(sst_busy) << 9
             | swaps << 28
+    }
+
+    /// The video registers or the DAC changed: the frame the retrace follows from now on
+    /// (`video` module; its phase is counted from power-on).
+    pub(crate) fn set_video(&mut self, regs: VideoRegs, dac: &Dac) {
+        self.frame = Frame::new(self.clock_hz, regs, dac);
+    }
+
+    /// `fbiInit0` or `fbiInit4` changed: the memory FIFO they set up from now on.
+    pub(crate) fn set_memory_fifo(&mut self, m: MemoryFifo) {
+        self.host.set_memory_fifo(m);
+    }
+
+    /// The memory FIFO the host's writes queue in behind the PCI FIFO.
+    pub fn memory_fifo(&self) -> MemoryFifo {
+        self.host.memory_fifo
+    }
+
+    /// The video frame the retrace and `vRetrace` follow.
+    pub fn frame(&self) -> Frame {
+        self.frame
+    }
+
+    /// The `vRetrace` register (spec 5.37) at the host's present time: the scan line
+    /// since the end of the last vertical sync.
+    pub(crate) fn v_retrace(&self) -> u32 {
+        self.frame.v_retrace(self.host.now)
     }
 
     /// A triangle command ran.
@@ -318,8 +488,8 @@ impl Timing {
         let engine = setup.max(raster);
         self.host.command(engine, w.textured);
         let (cycles, bus_bound) = self.command(engine);
-        self.current.triangles += cycles;
-        self.current.bus_bound += bus_bound;
+        self.current.triangles = self.current.triangles.saturating_add(cycles);
+        self.current.bus_bound = self.current.bus_bound.saturating_add(bus_bound);
     }
 
     /// A FASTFILL of `rows` rows of `pixels` pixels in all ran.
@@ -327,14 +497,14 @@ impl Timing {
         let engine = pixels * SUB / 2 + rows * FILL_ROW_CLOCKS;
         self.host.command(engine, false);
         let (cycles, bus_bound) = self.command(engine);
-        self.current.fills += cycles;
-        self.current.bus_bound += bus_bound;
+        self.current.fills = self.current.fills.saturating_add(cycles);
+        self.current.bus_bound = self.current.bus_bound.saturating_add(bus_bound);
     }
 
     /// A SWAPBUFFER ended the frame.
-    /// `value` is what was written to `swapbufferCMD`; `vsync` the `vSync` register.
-    pub(crate) fn swap(&mut self, value: u32, vsync: u32) {
-        let retrace = Retrace::new(self.clock_hz, vsync);
+    /// `value` is what was written to `swapbufferCMD`.
+    pub(crate) fn swap(&mut self, value: u32) {
+        let retrace = self.frame;
         let synced = value & 1 != 0;
         let interval = u64::from((value >> 1) & 0xff);
         // The host's view: the swap is pending, and the engine waits, until it happens.
@@ -350,7 +520,11 @@ impl Timing {
         self.host.swaps.push_back(done);
         self.host.engine_free = self.host.engine_free.max(done);
         // The count: the same wait on the board's own clock (the cycles so far).
-        let now = self.cycles() * SUB + self.fraction + self.pending_bus;
+        let now = self
+            .cycles()
+            .saturating_mul(SUB)
+            .saturating_add(self.fraction + self.pending_bus + self.pending_wait)
+            .min(HOST_CLOCK_MAX);
         let wait = if synced {
             retrace.swap_time(now, self.last_swap, interval) - now
         } else {
@@ -369,21 +543,26 @@ impl Timing {
     }
 
     /// The cost (whole clocks) of a command whose engine time is `engine` (1/16 clock),
-    /// overlapped with the bus time of the writes that fed it; and the part of it by
-    /// which the bus was the longer.
+    /// overlapped with the feed of the writes before it (their bus time and the host's
+    /// waits between them); and the part of it by which the bus was the longer (the part
+    /// by which the host's waits were goes to `host_wait`).
     fn command(&mut self, engine: u64) -> (u64, u64) {
         let bus = std::mem::take(&mut self.pending_bus);
-        let sub = bus.max(engine) + self.fraction;
+        let wait = std::mem::take(&mut self.pending_wait);
+        let feed = bus + wait;
+        let sub = feed.max(engine) + self.fraction;
         self.fraction = sub % SUB;
         let cycles = sub / SUB;
-        self.current.cycles += cycles;
-        let bus_bound = bus.saturating_sub(engine) / SUB;
-        (cycles, bus_bound)
+        self.current.cycles = self.current.cycles.saturating_add(cycles);
+        let excess = feed.saturating_sub(engine);
+        let host = excess.min(wait);
+        self.current.host_wait = self.current.host_wait.saturating_add(host / SUB);
+        (cycles, (excess - host) / SUB)
     }
 
     /// Cycles modelled so far, the frame in progress included.
     pub fn cycles(&self) -> u64 {
-        self.total.cycles + self.current.cycles
+        self.total.cycles.saturating_add(self.current.cycles)
     }
 
     /// The frame in progress (since the last swap).
@@ -429,7 +608,7 @@ mod tests {
         });
         assert_eq!(t.cycles(), 24 + 60); // (960 + 14) / 16 = 60, 14/16 carried
         assert_eq!(t.current_frame().bus_bound, 2);
-        t.swap(0, 0);
+        t.swap(0);
         assert_eq!(t.frames.len(), 1);
         assert_eq!(t.frames[0].cycles, 84);
         assert_eq!(t.total.triangles, 84);
@@ -442,11 +621,11 @@ mod tests {
     fn status_reads_busy_until_the_engine_is_done_and_the_fifo_fills() {
         let mut t = Timing::default();
         // Idle: FIFO empty (0x3f), nothing busy.
-        assert_eq!(t.status(0x40, 0), 0x40 | 0x3f);
+        assert_eq!(t.status(0x40), 0x40 | 0x3f);
         // A fill of 640x480 (172,500 clocks) started by one write.
         t.write();
         t.fastfill(640 * 480, 480);
-        let s = t.status(0, 0);
+        let s = t.status(0);
         assert_eq!(s & 0x380, 0x280, "FBI and SST-1 busy, TREX idle: {s:#x}");
         // 100 writes while it runs: the FIFO holds 64, the host waits for the rest, so
         // the fill is over when the last is written, and the 64 writes after it are
@@ -454,37 +633,175 @@ mod tests {
         for _ in 0..20 {
             t.write();
         }
-        assert_eq!(t.status(0, 0) & 0x3f, 64 - 20);
+        assert_eq!(t.status(0) & 0x3f, 64 - 20);
         for _ in 0..80 {
             t.write();
         }
-        let s = t.status(0, 0);
+        let s = t.status(0);
         assert_eq!(s & 0x3f, 0x3f, "{s:#x}");
         assert_eq!(s & 0x380, 0);
         // A swap is pending until the engine takes it.
         t.write();
         t.fastfill(640 * 480, 480);
         t.write();
-        t.swap(0, 0);
-        assert_eq!((t.status(0, 0) >> 28) & 7, 1);
+        t.swap(0);
+        assert_eq!((t.status(0) >> 28) & 7, 1);
         let mut reads = 0;
-        while t.status(0, 0) & 0x200 != 0 {
+        while t.status(0) & 0x200 != 0 {
             t.read();
             reads += 1;
         }
         // 172,500 clocks at 4.5 clocks a read.
         assert_eq!(reads, 172_500 * 16 / PCI_CLOCKS_PER_READ as usize);
-        assert_eq!((t.status(0, 0) >> 28) & 7, 0);
+        assert_eq!((t.status(0) >> 28) & 7, 0);
+    }
+
+    #[test]
+    fn the_memory_fifo_queues_writes_behind_a_full_pci_fifo() {
+        // Glide's set-up on 4 MiB: rows 450 to 1023 (293,888 entries, capped at 65,536),
+        // low water mark 23.
+        let init0 = 1 << 13;
+        let init4 = 0x3ff << 18 | 450 << 8 | 23 << 2 | 1;
+        let glide = MemoryFifo::from_registers(init0, init4, 4);
+        assert_eq!(glide.entries, MEMORY_FIFO_MAX_ENTRIES);
+        assert_eq!(glide.low_water_mark, 23);
+        // Off without fbiInit0 bit 13, or with the rows the wrong way round; on 2 MiB the
+        // rows stop at 511.
+        assert_eq!(MemoryFifo::from_registers(0, init4, 4).entries, 0);
+        assert_eq!(
+            MemoryFifo::from_registers(init0, 9 << 18 | 10 << 8, 4).entries,
+            0
+        );
+        assert_eq!(
+            MemoryFifo::from_registers(init0, 0x3ff << 18 | 500 << 8, 2).entries,
+            12 * 512
+        );
+
+        let status = |t: &mut Timing| {
+            let s = t.status(0xffff << 12);
+            (s & 0x3f, s >> 12 & 0xffff, s & 0x200 != 0)
+        };
+        let mut t = Timing::default();
+        assert_eq!(status(&mut t), (0x3f, 0xffff, false), "off: the FBI's bits");
+        // One row: 512 entries.
+        t.set_memory_fifo(MemoryFifo {
+            entries: 512,
+            low_water_mark: 23,
+        });
+        assert_eq!(status(&mut t), (0x3f, 512, false));
+        t.write();
+        t.fastfill(640 * 480, 480);
+        // 100 writes behind the fill: each time 41 are in the PCI FIFO (23 free) they go
+        // to memory: 82 there, 18 in the PCI FIFO.
+        for _ in 0..100 {
+            t.write();
+        }
+        assert_eq!(status(&mut t), (64 - 18, 512 - 82, true));
+        // Up to 576 (512 + 64) queue without the host waiting.
+        for _ in 100..576 {
+            t.write();
+        }
+        assert_eq!(status(&mut t), (0, 0, true));
+        let before = t.host.now;
+        assert!(before < t.host.engine_free, "the host has not waited");
+        // The 577th waits for the fill to end; then everything is taken at once.
+        t.write();
+        assert!(t.host.now >= t.host.engine_free);
+        assert_eq!(status(&mut t), (0x3f, 512, false));
+    }
+
+    #[test]
+    fn the_idle_engine_shortcut_changes_no_read() {
+        // The same pseudo-random accesses (writes, triangles, fills, swaps, reads and
+        // waits, with and without a memory FIFO) on two models, one of which always takes
+        // the general path for writes: every status read agrees.
+        for memory in [0, 100] {
+            let mut a = Timing::default();
+            let mut b = Timing::default();
+            for t in [&mut a, &mut b] {
+                t.set_memory_fifo(MemoryFifo {
+                    entries: memory,
+                    low_water_mark: 23,
+                });
+            }
+            let mut seed = 0x1234_5678_9abc_def0u64;
+            for step in 0..200_000 {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                for (t, general) in [(&mut a, false), (&mut b, true)] {
+                    let op = seed % 100;
+                    // A write, and for a command the command it carries (as the board
+                    // calls them).
+                    if op <= 81 {
+                        t.pending_bus += PCI_CLOCKS_PER_WRITE;
+                        if general {
+                            t.host.write_general();
+                        } else {
+                            t.host.write();
+                        }
+                    }
+                    match op {
+                        0..=69 => {}
+                        70..=79 => t.triangle(TriangleWork {
+                            pixels: seed >> 40 & 0x3ff,
+                            spans: seed >> 50 & 0x1f,
+                            textured: seed & 1 << 20 != 0,
+                            ..TriangleWork::default()
+                        }),
+                        80 => t.fastfill(seed >> 32 & 0xffff, 40),
+                        81 => t.swap((seed >> 8) as u32 & 0x7),
+                        82 => t.host_wait(seed >> 44),
+                        _ => t.read(),
+                    }
+                }
+                assert_eq!(a.status(0), b.status(0), "step {step}");
+                assert_eq!(a.v_retrace(), b.v_retrace());
+            }
+            assert_eq!(a.cycles(), b.cycles());
+        }
+    }
+
+    #[test]
+    fn huge_waits_keep_the_retrace_phase_and_never_overflow() {
+        let mut t = Timing::default();
+        let period = Frame::power_on(DEFAULT_CLOCK_HZ).period;
+        t.write();
+        t.fastfill(640 * 480, 480);
+        let mut exact = u128::from(t.host.now);
+        for cycles in [u64::MAX, 1 << 50, u64::MAX, 12_345, u64::MAX] {
+            t.host_wait(cycles);
+            // A wait over WAIT_MAX is shortened by whole frames.
+            let sub = u128::from(cycles) * 16;
+            let played = if sub > u128::from(WAIT_MAX) {
+                u128::from(WAIT_MAX) + (sub - u128::from(WAIT_MAX)) % u128::from(period)
+            } else {
+                sub
+            };
+            exact += played;
+            assert!(t.host.now <= REBASE_AT);
+            assert_eq!(
+                u128::from(t.host.now) % u128::from(period),
+                exact % u128::from(period),
+                "the retrace keeps its phase"
+            );
+            assert_eq!(t.status(0) & 0x3bf, 0x3f, "idle after the wait");
+        }
+        // The count saturates.
+        t.write();
+        t.swap(0);
+        assert_eq!(t.frames[0].host_wait, HOST_CLOCK_MAX / SUB);
+        assert!(t.cycles() < u64::MAX);
     }
 
     #[test]
     fn synchronised_swaps_wait_for_the_retraces_their_interval_asks_for() {
-        let r = Retrace::new(DEFAULT_CLOCK_HZ, 0);
+        let r = Frame::power_on(DEFAULT_CLOCK_HZ);
         let period = DEFAULT_CLOCK_HZ * SUB / REFRESH_HZ;
         assert_eq!(r.period, period);
-        assert_eq!(r.active, period * 2 / 525);
-        assert!(!r.active_at(0) && r.active_at(period - 1) && !r.active_at(period));
-        let first = period - r.active;
+        assert_eq!(r.retrace, period * 2 / 525);
+        assert!(!r.retrace_at(0) && r.retrace_at(period - 1) && !r.retrace_at(period));
+        let first = period - r.retrace;
         // Interval 0: the next retrace; during one, at once.
         assert_eq!(r.swap_time(0, 0, 0), first);
         assert_eq!(r.swap_time(first + 5, 0, 0), first + 5);
@@ -493,7 +810,7 @@ mod tests {
         // The count: a frame that swaps at once on an idle board waits for the retrace.
         let mut t = Timing::default();
         t.write();
-        t.swap(1, 0);
+        t.swap(1);
         // (The swap write itself is part of the wait from the board's clock.)
         assert_eq!(
             t.frames[0].retrace_wait,
@@ -501,17 +818,17 @@ mod tests {
         );
         // Unsynchronised swaps do not wait.
         t.write();
-        t.swap(0, 0);
+        t.swap(0);
         assert_eq!(t.frames[1].retrace_wait, 0);
         // The host sees the swap pending until the retrace.
         let mut t = Timing::default();
         t.write();
-        t.swap(1 | 2 << 1, 0);
-        assert_eq!((t.status(0, 0) >> 28) & 7, 1);
-        while (t.status(0, 0) >> 28) & 7 != 0 {
+        t.swap(1 | 2 << 1);
+        assert_eq!((t.status(0) >> 28) & 7, 1);
+        while (t.status(0) >> 28) & 7 != 0 {
             t.read();
         }
         assert!(t.host.now >= first + 2 * period);
-        assert_eq!(t.status(0, 0) & 0x40, 0, "swapped during the retrace");
+        assert_eq!(t.status(0) & 0x40, 0, "swapped during the retrace");
     }
 }

@@ -16,7 +16,9 @@
 //!   form when the name ends in `.vtrace`; gzip-compressed when it ends in `.gz`. After
 //!   every buffer swap the trace gets a `dump front STEM_swapN_front.raw` point (STEM:
 //!   the file name up to its first dot), so `voodoo replay` reproduces each displayed
-//!   frame.
+//!   frame. With `VOODOO_TRACE_HOST_TIME=1` the trace also holds the program's own time
+//!   between bus accesses, from the host's clock (`wait` lines of at least 1 us;
+//!   `sst1_trace::Recorder::record_host_time`), so its polling replays as it ran.
 //! * `VOODOO_WINDOW=1`: show the front buffer in a live window, updated at every buffer
 //!   swap (`window` module; needs the cargo feature `window` and a display, else one
 //!   line on stderr and the run stays headless).
@@ -69,6 +71,9 @@ impl RegisterBus for SharedBoard {
     }
     fn pci_write(&mut self, offset: u32, value: u32) {
         self.0.borrow_mut().pci_write(offset, value);
+    }
+    fn host_wait(&mut self, cycles: u64) {
+        self.0.borrow_mut().host_wait(cycles);
     }
 }
 
@@ -140,12 +145,13 @@ impl Recording {
                 return None;
             }
         };
+        let mut recorder = Recorder::streaming(board.clone(), cfg, writer);
+        if std::env::var_os("VOODOO_TRACE_HOST_TIME").is_some_and(|v| !v.is_empty() && v != "0") {
+            // 50 graphics clocks: 1 us at 50 MHz.
+            recorder.record_host_time(50);
+        }
         Some(Self {
-            recorder: Rc::new(RefCell::new(Recorder::streaming(
-                board.clone(),
-                cfg,
-                writer,
-            ))),
+            recorder: Rc::new(RefCell::new(recorder)),
             path,
             stem: if stem.is_empty() {
                 "trace".into()

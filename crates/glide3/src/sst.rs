@@ -17,9 +17,8 @@ const STATUS_BUSY: u32 = 1 << 9;
 const CHIP_REGISTERS: u32 = 0x100;
 
 impl crate::Glide {
-    /// `grSstVideoLine`: the whole `vRetrace` register, unmasked (gsst.c).
-    /// UNVERIFIED: the timing model has no scan-line counter; our board reads
-    /// `vRetrace` as 0.
+    /// `grSstVideoLine`: the whole `vRetrace` register, unmasked (gsst.c): the scan
+    /// line of the board's video timing model (docs/timing.md).
     pub fn video_line(&mut self) -> u32 {
         self.hw.r(V_RETRACE)
     }

@@ -33,4 +33,11 @@ pub trait RegisterBus {
     fn read32(&mut self, addr: u32) -> u32;
     /// A write to PCI configuration space (spec section 6); `offset` is the byte offset.
     fn pci_write(&mut self, offset: u32, value: u32);
+    /// Host time passes without a bus access: `cycles` cycles of the board's graphics
+    /// clock (a trace's `wait` line). A board that models time lets its engine run on
+    /// meanwhile; a bus that does not model time ignores it (the default). A wrapper that
+    /// forwards the other calls forwards this one too.
+    fn host_wait(&mut self, cycles: u64) {
+        let _ = cycles;
+    }
 }

@@ -16,13 +16,16 @@
 //!          0x06 dump        buffer u8 (0 front, 1 back, 2 depth, 3 aux), len u8, name (UTF-8)
 //!          0x07 frame       frame number u32: follows every write of swapbufferCMD that
 //!                           reaches the FBI; frame N+1 starts after it
+//!          0x08 wait        cycles u64: host time with no bus access (version 2)
 //! ```
 //!
 //! A reader accepts a file whose `min_reader_version` is at most [`READER_VERSION`] and skips
-//! header bytes it does not know (up to `header_len`). [`BinaryReader`] reads the records one
-//! at a time and trusts no count for an allocation; the header's counts are only checked
-//! against the records, at the end. Frame records carry no op of their
-//! own: decoding yields exactly the ops that were encoded, and the decoder checks that each
+//! header bytes it does not know (up to `header_len`). A trace with `wait` records is
+//! written as version 2 with `min_reader_version` 2 (a version-1 reader refuses it rather
+//! than dropping the waits); one without is written exactly as version 1 wrote it.
+//! [`BinaryReader`] reads the records one at a time and trusts no count for an
+//! allocation; the header's counts are only checked against the records, at the end.
+//! Frame records carry no op of their own: decoding yields exactly the ops that were encoded, and the decoder checks that each
 //! swap is followed by its frame record. The same rules as the text parser apply (offsets,
 //! config values and order, dump names), so any decoded trace writes back as valid text.
 
@@ -33,10 +36,13 @@ use crate::{
 
 /// The magic bytes that open a binary trace.
 pub const MAGIC: [u8; 8] = *b"SST1TRCB";
-/// The version this code writes.
-pub const VERSION: u16 = 1;
+/// The version this code writes for a trace with `wait` records (one without is
+/// written as version 1, which it is).
+pub const VERSION: u16 = 2;
 /// The newest `min_reader_version` this code can read.
-pub const READER_VERSION: u16 = 1;
+pub const READER_VERSION: u16 = 2;
+/// The version of a trace without `wait` records.
+const VERSION_WITHOUT_WAITS: u16 = 1;
 /// Length of the version-1 header.
 const HEADER_LEN: u32 = 36;
 
@@ -47,6 +53,7 @@ const TAG_READ: u8 = 0x04;
 const TAG_READ_VALUE: u8 = 0x05;
 const TAG_DUMP: u8 = 0x06;
 const TAG_FRAME: u8 = 0x07;
+const TAG_WAIT: u8 = 0x08;
 
 /// A malformed binary trace. `offset` is the byte offset of the record at fault.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -144,6 +151,7 @@ pub fn encode_binary(trace: &Trace) -> Vec<u8> {
         trace.board_config(),
         trace.ops.len() as u64,
         counts.swaps,
+        counts.waits > 0,
     );
     let mut frame = 0u32;
     for op in &trace.ops {
@@ -152,16 +160,23 @@ pub fn encode_binary(trace: &Trace) -> Vec<u8> {
     out
 }
 
-/// Appends the header of a trace on `board` with `op_count` ops and `frame_count` frames.
+/// Appends the header of a trace on `board` with `op_count` ops and `frame_count` frames;
+/// `waits` says whether it holds `wait` records (version 2) or not (version 1).
 pub(crate) fn encode_header(
     out: &mut Vec<u8>,
     board: sst1_board::BoardConfig,
     op_count: u64,
     frame_count: u64,
+    waits: bool,
 ) {
+    let version = if waits {
+        VERSION
+    } else {
+        VERSION_WITHOUT_WAITS
+    };
     out.extend_from_slice(&MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&READER_VERSION.to_le_bytes());
+    out.extend_from_slice(&version.to_le_bytes());
+    out.extend_from_slice(&version.to_le_bytes());
     out.extend_from_slice(&HEADER_LEN.to_le_bytes());
     for field in [board.fbi_mb, board.tmus, board.tmu_mb] {
         out.push(field.min(255) as u8);
@@ -206,6 +221,10 @@ pub(crate) fn encode_op(out: &mut Vec<u8>, op: &TraceOp, frame: &mut u32) {
             out.push(TAG_READ_VALUE);
             out.extend_from_slice(&addr.to_le_bytes());
             out.extend_from_slice(&value.to_le_bytes());
+        }
+        TraceOp::Wait { cycles } => {
+            out.push(TAG_WAIT);
+            out.extend_from_slice(&cycles.to_le_bytes());
         }
         TraceOp::Dump { buffer, file } => {
             out.push(TAG_DUMP);
@@ -455,6 +474,13 @@ impl<R: std::io::Read> BinaryReader<R> {
                     TraceOp::Dump {
                         buffer,
                         file: file.to_owned(),
+                    }
+                }
+                TAG_WAIT => {
+                    let mut b = [0u8; 8];
+                    self.read(&mut b, start)?;
+                    TraceOp::Wait {
+                        cycles: u64::from_le_bytes(b),
                     }
                 }
                 TAG_FRAME => {

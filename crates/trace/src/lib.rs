@@ -3,7 +3,8 @@
 //!
 //! A trace is what a driver does to the board through its PCI interface (spec sections 4
 //! and 6): configuration-space writes, 32-bit writes and reads in the 16 MiB aperture,
-//! plus `dump` points where a replayer saves a buffer. The plain-text form is defined in
+//! plus `dump` points where a replayer saves a buffer, and `wait` ops where host time
+//! passes between accesses. The plain-text form is defined in
 //! `shared/docs/trace-text-format.md`; [`text`] reads and writes it, [`binary`] is our own
 //! compact form for recording and fast replay, and both hold exactly the same [`TraceOp`]
 //! stream, so conversion is lossless in both directions (text comments aside).
@@ -186,6 +187,15 @@ pub enum TraceOp {
         addr: u32,
         /// The value the recorded read returned, if known.
         value: Option<u32>,
+    },
+    /// `wait CYCLES`: host time passes with no bus access, `cycles` cycles of the
+    /// replaying board's graphics clock (50 per microsecond at the default 50 MHz). The
+    /// board's engine runs on meanwhile, so a `status` read after it sees less busy and
+    /// more FIFO free space (docs/timing.md). Our extension of the shared text format; a
+    /// trace without it replays as if no host time passed between accesses.
+    Wait {
+        /// Graphics-clock cycles of host time.
+        cycles: u64,
     },
     /// `dump BUFFER FILE`: save a buffer as it is at this point.
     Dump {

@@ -6,7 +6,17 @@
 //! and every configuration write outside the 64 dwords of configuration space reaches no
 //! register. The trace formats accept exactly the decoded forms, so every recorded trace
 //! reads back and replays as the recording ran.
+//!
+//! Host time: a driver that knows how much time passes between its accesses says so with
+//! [`RegisterBus::host_wait`] (deterministic), and [`Recorder::record_host_time`] makes the
+//! recorder measure it with the host's monotonic clock. Either way the recorder logs a
+//! `wait` op and passes the wait to the bus it wraps, so the board being recorded sees
+//! the same time as a replay of the trace will, and every recorded `status` read replays
+//! with the value it had.
 
+use std::time::Instant;
+
+use sst1_board::timing::DEFAULT_CLOCK_HZ;
 use sst1_board::{aperture_offset, BoardConfig};
 use sst1_regs::RegisterBus;
 
@@ -65,6 +75,38 @@ impl OpLog for crate::TraceWriter {
 pub struct Recorder<B: RegisterBus, L: OpLog = Trace> {
     inner: B,
     log: L,
+    /// Measures the host's time between accesses, when asked to.
+    clock: Option<HostClock>,
+}
+
+/// The host's time between accesses, measured with its monotonic clock
+/// ([`Recorder::record_host_time`]).
+#[derive(Clone, Copy, Debug)]
+struct HostClock {
+    /// When the last access (and its logging) returned.
+    last: Instant,
+    /// Host time measured and not yet logged, in nanoseconds.
+    carry_ns: u128,
+    /// The shortest wait logged, in graphics clocks; shorter host time carries over.
+    min_cycles: u64,
+}
+
+const NANOS_PER_SECOND: u128 = 1_000_000_000;
+
+impl HostClock {
+    /// The graphics clocks to log before the next access: the time since the last one
+    /// returned, with what was carried, once it reaches `min_cycles`.
+    fn elapsed_cycles(&mut self) -> Option<u64> {
+        self.carry_ns += self.last.elapsed().as_nanos();
+        let cycles = self.carry_ns * u128::from(DEFAULT_CLOCK_HZ) / NANOS_PER_SECOND;
+        if cycles == 0 || cycles < u128::from(self.min_cycles) {
+            return None;
+        }
+        let cycles = u64::try_from(cycles).unwrap_or(u64::MAX);
+        let spent = u128::from(cycles) * NANOS_PER_SECOND / u128::from(DEFAULT_CLOCK_HZ);
+        self.carry_ns = self.carry_ns.saturating_sub(spent);
+        Some(cycles)
+    }
 }
 
 impl<B: RegisterBus> Recorder<B> {
@@ -114,7 +156,47 @@ impl<B: RegisterBus, L: OpLog> Recorder<B, L> {
         ] {
             log.record(op);
         }
-        Self { inner, log }
+        Self {
+            inner,
+            log,
+            clock: None,
+        }
+    }
+
+    /// From now on, measure the host's time between accesses with its monotonic clock
+    /// and record it: before each access, the time since the previous one returned (the
+    /// time the driver spent outside the bus, not the wrapped board's own work) becomes
+    /// a `wait` op in graphics clocks of the default 50 MHz clock, passed to the wrapped
+    /// bus too. Waits shorter than `min_cycles` (at least 1) are carried into the next
+    /// one, so no time is lost and the trace stays short. This makes the recording
+    /// depend on the host's speed: the same program records different waits on every
+    /// run, while its replay is the same on every run.
+    pub fn record_host_time(&mut self, min_cycles: u64) {
+        self.clock = Some(HostClock {
+            last: Instant::now(),
+            carry_ns: 0,
+            min_cycles: min_cycles.max(1),
+        });
+    }
+
+    /// Logs and forwards the host time measured since the last access, if asked to.
+    fn host_time(&mut self) {
+        if let Some(cycles) = self.clock.as_mut().and_then(HostClock::elapsed_cycles) {
+            self.wait(cycles);
+        }
+    }
+
+    /// Marks the end of an access for the host clock.
+    fn accessed(&mut self) {
+        if let Some(clock) = &mut self.clock {
+            clock.last = Instant::now();
+        }
+    }
+
+    /// Logs a `wait` op and passes it to the wrapped bus.
+    fn wait(&mut self, cycles: u64) {
+        self.log.record(TraceOp::Wait { cycles });
+        self.inner.host_wait(cycles);
     }
 
     /// Logs a `dump` point: a replay of the trace saves `buffer` to `file` here.
@@ -153,27 +235,40 @@ impl<B: RegisterBus, L: OpLog> Recorder<B, L> {
 
 impl<B: RegisterBus, L: OpLog> RegisterBus for Recorder<B, L> {
     fn write32(&mut self, addr: u32, value: u32) {
+        self.host_time();
         self.log.record(TraceOp::Write {
             addr: recorded_addr(addr),
             value,
         });
         self.inner.write32(addr, value);
+        self.accessed();
     }
 
     fn read32(&mut self, addr: u32) -> u32 {
+        self.host_time();
         let value = self.inner.read32(addr);
         self.log.record(TraceOp::Read {
             addr: recorded_addr(addr),
             value: Some(value),
         });
+        self.accessed();
         value
     }
 
     fn pci_write(&mut self, offset: u32, value: u32) {
+        self.host_time();
         self.log.record(TraceOp::Pci {
             offset: recorded_pci_offset(offset),
             value,
         });
         self.inner.pci_write(offset, value);
+        self.accessed();
+    }
+
+    /// Logs the wait (a wait of 0 logs nothing) and passes it on.
+    fn host_wait(&mut self, cycles: u64) {
+        if cycles > 0 {
+            self.wait(cycles);
+        }
     }
 }

@@ -54,6 +54,10 @@ pub struct OpCounts {
     pub pci: u64,
     /// `dump` ops.
     pub dumps: u64,
+    /// `wait` ops.
+    pub waits: u64,
+    /// Graphics-clock cycles the `wait` ops ask for in all (saturating).
+    pub wait_cycles: u64,
     /// Writes to the register space (below 0x400000).
     pub register_writes: u64,
     /// Writes to the linear frame buffer (0x400000-0x7fffff).
@@ -87,6 +91,10 @@ impl OpCounts {
             TraceOp::Pci { .. } => self.pci += 1,
             TraceOp::Read { .. } => self.reads += 1,
             TraceOp::Dump { .. } => self.dumps += 1,
+            TraceOp::Wait { cycles } => {
+                self.waits += 1;
+                self.wait_cycles = self.wait_cycles.saturating_add(cycles);
+            }
             TraceOp::Write { addr, .. } => self.count_write(addr),
         }
     }
@@ -189,6 +197,7 @@ fn step(board: &mut Board, op: &TraceOp) -> Option<Dump> {
         TraceOp::Read { addr, .. } => {
             board.read32(*addr);
         }
+        TraceOp::Wait { cycles } => board.host_wait(*cycles),
         TraceOp::Dump { buffer, file } => {
             let (width, height) = board.display_size();
             return Some(Dump {

@@ -7,11 +7,12 @@
 //! pci 0x40 0x00000003
 //! w 0x000210 0x00000007
 //! r 0x000000 0x0fffffff     # extension: a recorded read and what it returned
+//! wait 500                  # extension: 500 graphics clocks (10 us) of host time
 //! dump front scene_front.raw
 //! ```
 //!
-//! `r OFFSET [VALUE]` is this project's extension for [`TraceOp::Read`]; the shared format
-//! has no reads. Besides the format's own rules the parser checks what a replayer relies
+//! `r OFFSET [VALUE]` is this project's extension for [`TraceOp::Read`] and `wait CYCLES`
+//! for [`TraceOp::Wait`] (a 64-bit count); the shared format has neither. Besides the format's own rules the parser checks what a replayer relies
 //! on: offsets 4-aligned and inside the aperture (or configuration space), `config` values
 //! the board supports and before the first `w`/`r`, dump names that are bare file names.
 //!
@@ -70,7 +71,7 @@ pub enum ParseError {
         line: usize,
     },
     /// The line starts with a word that is not a command.
-    #[error("{file}:{line}: unknown command {found}; expected config, pci, w, r or dump")]
+    #[error("{file}:{line}: unknown command {found}; expected config, pci, w, r, wait or dump")]
     UnknownCommand {
         /// The file's name.
         file: String,
@@ -310,6 +311,19 @@ pub fn parse_number(word: &str) -> Option<u32> {
 }
 
 const VALUE: &str = "a 32-bit value (0x hex or decimal)";
+const CYCLES: &str = "a wait in graphics-clock cycles (0x hex or decimal, below 2^64)";
+
+/// A 64-bit number as the format writes them (see [`parse_number`]).
+pub fn parse_number_u64(word: &str) -> Option<u64> {
+    let (digits, radix) = match word.strip_prefix("0x").or_else(|| word.strip_prefix("0X")) {
+        Some(hex) => (hex, 16),
+        None => (word, 10),
+    };
+    if digits.is_empty() || !digits.chars().all(|c| c.is_digit(radix)) {
+        return None;
+    }
+    u64::from_str_radix(digits, radix).ok()
+}
 
 /// Parses line `number` of `file` (without its `\n`): `None` for a blank or comment line.
 /// `accessed` says whether a `w` or `r` came before, and is set by one.
@@ -371,6 +385,11 @@ fn parse_line(
             };
             TraceOp::Read { addr, value }
         }
+        "wait" => {
+            let word = line.word(CYCLES)?;
+            let cycles = parse_number_u64(word).ok_or_else(|| line.error(CYCLES, Some(word)))?;
+            TraceOp::Wait { cycles }
+        }
         "dump" => {
             const BUFFER: &str = "a buffer (front, back, depth or aux)";
             let word = line.word(BUFFER)?;
@@ -406,6 +425,7 @@ pub fn format_op(op: &TraceOp) -> String {
             addr,
             value: Some(value),
         } => format!("r {addr:#08x} {value:#010x}"),
+        TraceOp::Wait { cycles } => format!("wait {cycles}"),
         TraceOp::Dump { buffer, file } => format!("dump {} {file}", buffer.name()),
     }
 }

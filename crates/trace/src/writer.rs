@@ -43,6 +43,8 @@ pub struct TraceWriter {
     board: BoardConfig,
     ops: u64,
     frame: u32,
+    /// Whether a `wait` op was written (the binary header's version).
+    waits: bool,
     /// One op's encoding.
     buf: Vec<u8>,
     /// The first error, kept for [`TraceWriter::finish`] once [`TraceWriter::record`] meets it.
@@ -71,7 +73,7 @@ impl TraceWriter {
             (true, false) => {
                 let mut file = BufWriter::new(File::create(path)?);
                 let mut header = Vec::new();
-                encode_header(&mut header, BoardConfig::default(), 0, 0);
+                encode_header(&mut header, BoardConfig::default(), 0, 0, false);
                 file.write_all(&header)?;
                 Output::Binary(file)
             }
@@ -100,6 +102,7 @@ impl TraceWriter {
             board: BoardConfig::default(),
             ops: 0,
             frame: 0,
+            waits: false,
             buf: Vec::new(),
             failed: None,
         })
@@ -114,6 +117,7 @@ impl TraceWriter {
                 ConfigKey::TmuMb => self.board.tmu_mb = value,
             }
         }
+        self.waits |= matches!(op, TraceOp::Wait { .. });
         self.buf.clear();
         match &mut self.output {
             Output::Text(w) => writeln!(w, "{}", format_op(op))?,
@@ -152,7 +156,13 @@ impl TraceWriter {
         }
         let mut header = Vec::new();
         // Frames are numbered from 0: the number of the next one is how many there were.
-        encode_header(&mut header, self.board, self.ops, u64::from(self.frame));
+        encode_header(
+            &mut header,
+            self.board,
+            self.ops,
+            u64::from(self.frame),
+            self.waits,
+        );
         match output {
             Output::Text(mut w) => w.flush(),
             Output::TextGz(w) => w.finish()?.flush(),

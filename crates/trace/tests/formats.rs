@@ -101,7 +101,7 @@ fn gouraud_dither4_counts() {
 
 /// (input, exact error message)
 const BAD_LINES: &[(&[u8], &str)] = &[
-    (b"w 0x10 1\nfoo 1 2\n", "t.trace:2: unknown command `foo`; expected config, pci, w, r or dump"),
+    (b"w 0x10 1\nfoo 1 2\n", "t.trace:2: unknown command `foo`; expected config, pci, w, r, wait or dump"),
     (b"# c\n\nw 0x10\n", "t.trace:3: expected a 32-bit value (0x hex or decimal), found end of line"),
     (b"w 0x10 0x1ffffffff\n", "t.trace:1: expected a 32-bit value (0x hex or decimal), found `0x1ffffffff`"),
     (b"w 0x10 12a\n", "t.trace:1: expected a 32-bit value (0x hex or decimal), found `12a`"),
@@ -232,12 +232,12 @@ fn binary_layout_and_errors() {
     assert_eq!(bytes, expected);
 
     let mut too_new = bytes.clone();
-    too_new[10] = 2;
+    too_new[10] = 3;
     assert_eq!(
         decode_binary(&too_new),
         Err(BinaryError::TooNew {
             version: 1,
-            min_reader_version: 2
+            min_reader_version: 3
         })
     );
     // A newer writer that old readers can still read: longer header, skipped.

@@ -494,7 +494,7 @@ fn error_messages_cut_quoted_input() {
         (
             format!("{long}x\n").into_bytes(),
             format!(
-                "t.trace:1: unknown command `{}…` (260001 bytes); expected config, pci, w, r or dump",
+                "t.trace:1: unknown command `{}…` (260001 bytes); expected config, pci, w, r, wait or dump",
                 &long[..40]
             ),
         ),

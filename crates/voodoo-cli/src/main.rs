@@ -82,6 +82,11 @@ enum Command {
         /// same for every count). Default: the machine's cores.
         #[arg(long, value_name = "N")]
         threads: Option<usize>,
+        /// Run without the timing model (one-board models only): the same pixels and
+        /// counters, no cycles counted, `status` always idle (docs/timing.md: what the
+        /// model costs).
+        #[arg(long)]
+        no_timing: bool,
     },
     /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
     /// against reference emulators' goldens with the conformance pass rule: every pixel
@@ -248,14 +253,18 @@ fn main() -> ExitCode {
             stats_json,
             profile,
             threads,
+            no_timing,
         } => resolve_model(model, profile.as_deref()).and_then(|profile| {
+            if no_timing && profile.is_none() {
+                return Err("--no-timing needs a one-board model (not --model vote)".into());
+            }
             replay(
                 &trace,
                 out.as_deref(),
                 png.as_deref(),
                 stats,
                 stats_json.as_deref(),
-                profile,
+                profile.map(|p| (p, !no_timing)),
                 threads.unwrap_or_else(default_threads),
             )
         }),
@@ -363,12 +372,12 @@ struct Replayed {
     front: Vec<u16>,
 }
 
-/// Runs a streamed trace on one board with `profile`, or on one board per reference
-/// emulator and votes (`None`), handing each dump (voted) to `sink` when it is reached,
-/// with a progress counter when stderr is a terminal.
+/// Runs a streamed trace on one board with `profile` (and the timing model on or off),
+/// or on one board per reference emulator and votes (`None`), handing each dump (voted)
+/// to `sink` when it is reached, with a progress counter when stderr is a terminal.
 fn run(
     stream: TraceStream<'_>,
-    profile: Option<AccuracyProfile>,
+    profile: Option<(AccuracyProfile, bool)>,
     threads: usize,
     mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
 ) -> Result<Replayed, String> {
@@ -384,10 +393,11 @@ fn run(
     let progress = |done: usize| bar.set_position(done as u64);
     let config = stream.config();
     let replayed = match profile {
-        Some(profile) => {
+        Some((profile, timing)) => {
             let mut board = Board::new(config);
             board.set_profile(profile);
             board.set_threads(threads);
+            board.set_timing(timing);
             execute_stream(stream, &mut board, progress, sink).map(|_| {
                 let front = board.dump_buffer(BufferKind::Front);
                 Replayed { board, front }
@@ -441,6 +451,7 @@ impl Stats {
                 "fills": f.fills,
                 "bus_bound": f.bus_bound,
                 "retrace_wait": f.retrace_wait,
+                "host_wait": f.host_wait,
             })
         };
         serde_json::json!({
@@ -530,7 +541,7 @@ fn replay(
     png: Option<&Path>,
     stats: bool,
     stats_json: Option<&Path>,
-    profile: Option<AccuracyProfile>,
+    profile: Option<(AccuracyProfile, bool)>,
     threads: usize,
 ) -> Result<(), String> {
     let stream = open_trace(path).map_err(|e| e.to_string())?;
@@ -559,12 +570,13 @@ fn replay(
             );
             for (i, f) in t.frames.iter().enumerate() {
                 println!(
-                    "frame {i:<6} {:.3} ms: triangles {:.3}, fills {:.3}, retrace wait {:.3}, bus-bound {:.3}",
+                    "frame {i:<6} {:.3} ms: triangles {:.3}, fills {:.3}, retrace wait {:.3}, bus-bound {:.3}, host-bound {:.3}",
                     ms(f.cycles),
                     ms(f.triangles),
                     ms(f.fills),
                     ms(f.retrace_wait),
-                    ms(f.bus_bound)
+                    ms(f.bus_bound),
+                    ms(f.host_wait)
                 );
             }
             println!("pixels in    {}", c.pixels_in);
@@ -626,7 +638,7 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     check_goldens_folder(goldens)?;
     let stream = open_trace(path).map_err(|e| e.to_string())?;
     let (mut consensus, mut majority, mut judged, mut unjudged) = (0, 0, 0, 0);
-    run(stream, profile, default_threads(), |dump| {
+    run(stream, profile.map(|p| (p, true)), default_threads(), |dump| {
         let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
         let found: Vec<(&str, Vec<u16>)> = Reference::ALL
             .iter()
@@ -682,7 +694,7 @@ fn demo(png: &Path) -> Result<(), String> {
     let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
     let replayed = run(
         stream,
-        Some(AccuracyProfile::default()),
+        Some((AccuracyProfile::default(), true)),
         default_threads(),
         |_| Ok(()),
     )?;
@@ -721,6 +733,12 @@ fn info(path: &Path) -> Result<(), String> {
         "ops: {ops} ({} writes, {} reads, {} pci, {} dumps)",
         c.writes, c.reads, c.pci, c.dumps
     );
+    if c.waits > 0 {
+        println!(
+            "waits: {} ({} graphics-clock cycles of host time)",
+            c.waits, c.wait_cycles
+        );
+    }
     println!(
         "writes: {} register, {} frame buffer, {} texture",
         c.register_writes, c.lfb_writes, c.texture_writes

@@ -114,6 +114,47 @@ fn replay_writes_dumps_png_and_stats() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// `--no-timing` replays the same pixels and counters without counting cycles; a
+/// `wait` line is host time in the count (`host_wait`); the vote refuses the switch.
+#[test]
+fn replay_without_timing_and_with_waits() {
+    let dir = scratch("no-timing");
+    let waited = SMALL.replace("w 0x000128 1\n", "wait 1000000\nw 0x000128 1\n");
+    std::fs::write(dir.join("small.trace"), &waited).unwrap();
+    let json = |args: &[&str], file: &str| {
+        let mut all = vec!["replay", "small.trace", "--stats-json", file];
+        all.extend_from_slice(args);
+        stdout(&voodoo(&dir, &all));
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()
+    };
+    let on = json(&["--out", "on"], "on.json");
+    let off = json(&["--out", "off", "--no-timing"], "off.json");
+    assert_eq!(
+        std::fs::read(dir.join("on/small_front.raw")).unwrap(),
+        std::fs::read(dir.join("off/small_front.raw")).unwrap()
+    );
+    for counter in ["pixels_in", "pixels_out", "triangles", "fastfills", "swaps"] {
+        assert_eq!(on[counter], off[counter], "{counter}");
+    }
+    assert!(on["cycles"].as_u64().unwrap() >= 1_000_000);
+    assert!(on["frames"][0]["host_wait"].as_u64().unwrap() > 0);
+    assert_eq!(off["cycles"], 0);
+    assert_eq!(off["frames"].as_array().unwrap().len(), 0);
+    let info = stdout(&voodoo(&dir, &["info", "small.trace"]));
+    assert!(info.contains("\nwaits: 1 (1000000 graphics-clock cycles of host time)\n"));
+    let vote = voodoo(
+        &dir,
+        &["replay", "small.trace", "--model", "vote", "--no-timing"],
+    );
+    assert!(!vote.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&vote.stderr),
+        "voodoo: --no-timing needs a one-board model (not --model vote)\n"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
 #[test]
 fn convert_round_trips() {
     let dir = scratch("convert");

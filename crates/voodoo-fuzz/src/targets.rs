@@ -314,7 +314,7 @@ fn recorder_seeds(repo: &Repository) -> Vec<Vec<u8>> {
                         bytes.extend_from_slice(&value.to_le_bytes());
                     }
                     TraceOp::Dump { .. } => bytes.push(7),
-                    TraceOp::Config { .. } => {}
+                    TraceOp::Config { .. } | TraceOp::Wait { .. } => {}
                 }
             }
             bytes
