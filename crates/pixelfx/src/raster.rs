@@ -103,9 +103,12 @@ impl Fbi {
     }
 
     /// [`Fbi::walk`] with the span kernels, compiled with AVX2 enabled.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn walk_spans_avx2<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
+    unsafe fn walk_spans_avx2<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
         self.walk::<M, T, true>(st, tex);
     }
 
@@ -464,9 +467,12 @@ fn shade_band<M: PixelModel>(
 }
 
 /// [`shade_band_rows`] compiled with AVX2 enabled.
+///
+/// # Safety
+/// The CPU must have AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn shade_band_avx2<M: PixelModel>(
+unsafe fn shade_band_avx2<M: PixelModel>(
     shader: &mut Shader<'_>,
     st: &DrawState,
     band: Vec<BandRow<'_>>,

@@ -41,6 +41,8 @@ pub struct Options {
     pub states: u32,
     /// Where the perf traces are (default: the repository's `traces/conformance/traces`).
     pub trace_dir: Option<PathBuf>,
+    /// Render threads of the extra fast-path row (none when 1).
+    pub threads: usize,
 }
 
 /// One scene to run: its name and ops.
@@ -55,12 +57,20 @@ struct Timing {
     wall: Duration,
     /// `None` where the OS does not tell (only Linux's schedstat is read).
     cpu: Option<Duration>,
+    /// Timed by the wall clock (a run on several threads: the replaying thread's CPU
+    /// time leaves out the others').
+    by_wall: bool,
 }
 
 impl Timing {
-    /// The time throughput is computed from: CPU time where known.
+    /// The time throughput is computed from: CPU time where known, wall time for a run
+    /// on several threads.
     fn key(&self) -> Duration {
-        self.cpu.unwrap_or(self.wall)
+        if self.by_wall {
+            self.wall
+        } else {
+            self.cpu.unwrap_or(self.wall)
+        }
     }
 }
 
@@ -102,10 +112,22 @@ fn clock_hz() -> Option<(f64, &'static str)> {
     Some((mhz * 1e6, "/proc/cpuinfo cpu MHz"))
 }
 
-/// Replays `trace` once on a fresh board, on the reference path or the fast path.
-fn run_once(trace: &Trace, reference: bool) -> (Timing, Stats) {
+/// How a run draws.
+#[derive(Clone, Copy)]
+enum Run {
+    /// The reference path, one thread.
+    Reference,
+    /// The fast path on this many render threads.
+    Fast(usize),
+}
+
+/// Replays `trace` once on a fresh board.
+fn run_once(trace: &Trace, run: Run) -> (Timing, Stats) {
     let mut board = Board::new(trace.board_config());
-    board.set_generic_path(reference);
+    match run {
+        Run::Reference => board.set_generic_path(true),
+        Run::Fast(threads) => board.set_threads(threads),
+    }
     let cpu0 = thread_cpu_time();
     let start = Instant::now();
     let dumps = execute(&trace.ops, &mut board, |_| {});
@@ -114,14 +136,15 @@ fn run_once(trace: &Trace, reference: bool) -> (Timing, Stats) {
         .zip(cpu0)
         .map(|(b, a)| b.saturating_sub(a));
     std::hint::black_box(dumps);
-    (Timing { wall, cpu }, board.stats())
+    let by_wall = matches!(run, Run::Fast(n) if n > 1);
+    (Timing { wall, cpu, by_wall }, board.stats())
 }
 
 /// The fastest of `iters` runs.
-fn best_of(trace: &Trace, reference: bool, iters: u32) -> (Timing, Stats) {
+fn best_of(trace: &Trace, run: Run, iters: u32) -> (Timing, Stats) {
     let mut best: Option<(Timing, Stats)> = None;
     for _ in 0..iters.max(1) {
-        let (t, s) = run_once(trace, reference);
+        let (t, s) = run_once(trace, run);
         if best.map_or(true, |(b, _)| t.key() < b.key()) {
             best = Some((t, s));
         }
@@ -242,7 +265,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
     };
     if !o.json {
         println!(
-            "best of {} run(s) per path, one thread, {timer} of the replay (parsing excluded){}",
+            "best of {} run(s) per path, {timer} of the replay (parsing excluded; the threaded row by wall time){}",
             o.iters.max(1),
             clock.map_or(String::new(), |(hz, from)| format!(
                 "; clock {:.2} GHz ({from})",
@@ -265,18 +288,30 @@ pub fn bench(o: &Options) -> Result<(), String> {
     let mut json_scenes = Vec::new();
     let mut all_match = true;
     for scene in &scenes {
-        let (t, s) = best_of(&scene.trace, false, o.iters);
+        let (t, s) = best_of(&scene.trace, Run::Fast(1), o.iters);
         let fast = PathResult {
             timing: t,
             stats: s,
         };
-        let (t, s) = best_of(&scene.trace, true, o.iters);
+        let (t, s) = best_of(&scene.trace, Run::Reference, o.iters);
         let reference = PathResult {
             timing: t,
             stats: s,
         };
+        let threaded = (o.threads > 1).then(|| {
+            let (t, s) = best_of(&scene.trace, Run::Fast(o.threads), o.iters);
+            PathResult {
+                timing: t,
+                stats: s,
+            }
+        });
         let speedup = reference.secs() / fast.secs();
-        let same = fast.stats == reference.stats;
+        // Threads against one thread, both by the wall clock.
+        let thread_speedup = threaded
+            .as_ref()
+            .map(|t| fast.timing.wall.as_secs_f64() / t.secs());
+        let same = fast.stats == reference.stats
+            && threaded.as_ref().map_or(true, |t| t.stats == fast.stats);
         all_match &= same;
         let hz = clock.map(|(hz, _)| hz);
         if o.json {
@@ -288,15 +323,23 @@ pub fn bench(o: &Options) -> Result<(), String> {
                 "fast": fast.json(hz),
                 "reference": reference.json(hz),
                 "speedup": speedup,
+                "threads": o.threads,
+                "threaded": threaded.as_ref().map(|t| t.json(hz)),
+                "thread_speedup_wall": thread_speedup,
                 "counters_match": same,
             }));
         } else {
             let opt =
                 |v: Option<f64>, prec: usize| v.map_or("-".to_owned(), |v| format!("{v:.prec$}"));
-            for (label, r, up) in [
+            let threads_label = format!("{} thr", o.threads);
+            let mut rows = vec![
                 ("fast", &fast, format!("{speedup:.2}x")),
                 ("reference", &reference, String::new()),
-            ] {
+            ];
+            if let (Some(t), Some(up)) = (&threaded, thread_speedup) {
+                rows.push((threads_label.as_str(), t, format!("{up:.2}x/1")));
+            }
+            for (label, r, up) in rows {
                 let name = if label == "fast" {
                     scene.name.as_str()
                 } else {

@@ -174,6 +174,11 @@ enum Command {
         /// (default: the repository's traces/conformance/traces).
         #[arg(long, value_name = "DIR")]
         trace_dir: Option<PathBuf>,
+        /// Also run the fast path on this many render threads, timed by the wall clock
+        /// (the speed-up column then compares it with one thread's wall time). Default:
+        /// the machine's cores; 1 leaves the row out.
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
     },
     /// Convert a trace between the text and binary forms, chosen by OUT's extension:
     /// `.vtrace` binary, `.vtrace.gz` gzip binary, `.gz` gzip text, anything else text.
@@ -294,7 +299,9 @@ fn main() -> ExitCode {
             small,
             states,
             trace_dir,
+            threads,
         } => bench::bench(&bench::Options {
+            threads: threads.unwrap_or_else(default_threads),
             traces,
             iters,
             json,
@@ -638,27 +645,31 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     check_goldens_folder(goldens)?;
     let stream = open_trace(path).map_err(|e| e.to_string())?;
     let (mut consensus, mut majority, mut judged, mut unjudged) = (0, 0, 0, 0);
-    run(stream, profile.map(|p| (p, true)), default_threads(), |dump| {
-        let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
-        let found: Vec<(&str, Vec<u16>)> = Reference::ALL
-            .iter()
-            .filter_map(|r| {
-                let dir = goldens.join(r.golden_dir());
-                [format!("{stem}.raw.gz"), format!("{stem}.raw")]
-                    .iter()
-                    .find_map(|f| judge::load_golden(&dir.join(f)))
-                    .map(|g| (r.golden_dir(), g))
-            })
-            .collect();
-        if found.len() < 2 {
-            println!("{stem}: fewer than two goldens, not judged");
-            unjudged += 1;
-            return Ok(());
-        }
-        let buffers: Vec<&[u16]> = found.iter().map(|(_, g)| g.as_slice()).collect();
-        let j = judge::judge(&buffers, &dump.data);
-        let names: Vec<&str> = found.iter().map(|(n, _)| *n).collect();
-        println!(
+    run(
+        stream,
+        profile.map(|p| (p, true)),
+        default_threads(),
+        |dump| {
+            let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
+            let found: Vec<(&str, Vec<u16>)> = Reference::ALL
+                .iter()
+                .filter_map(|r| {
+                    let dir = goldens.join(r.golden_dir());
+                    [format!("{stem}.raw.gz"), format!("{stem}.raw")]
+                        .iter()
+                        .find_map(|f| judge::load_golden(&dir.join(f)))
+                        .map(|g| (r.golden_dir(), g))
+                })
+                .collect();
+            if found.len() < 2 {
+                println!("{stem}: fewer than two goldens, not judged");
+                unjudged += 1;
+                return Ok(());
+            }
+            let buffers: Vec<&[u16]> = found.iter().map(|(_, g)| g.as_slice()).collect();
+            let j = judge::judge(&buffers, &dump.data);
+            let names: Vec<&str> = found.iter().map(|(n, _)| *n).collect();
+            println!(
             "{stem}: {} consensus and {} majority pixels fail ({} pixels where all differ; {}){}",
             j.consensus_fail,
             j.majority_fail,
@@ -666,11 +677,12 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
             names.join(", "),
             if j.same_size { "" } else { "; size differs" }
         );
-        consensus += j.consensus_fail;
-        majority += j.majority_fail;
-        judged += 1;
-        Ok(())
-    })?;
+            consensus += j.consensus_fail;
+            majority += j.majority_fail;
+            judged += 1;
+            Ok(())
+        },
+    )?;
     println!("{judged} dumps judged: {consensus} consensus and {majority} majority pixels fail");
     if consensus + majority > 0 {
         return Err(format!(

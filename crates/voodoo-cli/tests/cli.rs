@@ -409,13 +409,13 @@ fn bench_reports_both_paths() {
             "tiny.trace",
         ],
     ));
-    let out = stdout(&voodoo(&dir, &["bench", "--iters", "1", "tiny.trace"]));
+    let out = stdout(&voodoo(
+        &dir,
+        &["bench", "--iters", "1", "--threads", "2", "tiny.trace"],
+    ));
     let lines: Vec<&str> = out.lines().collect();
-    assert_eq!(lines.len(), 4, "{out}");
-    assert!(
-        lines[0].starts_with("best of 1 run(s) per path, one thread, "),
-        "{out}"
-    );
+    assert_eq!(lines.len(), 5, "{out}");
+    assert!(lines[0].starts_with("best of 1 run(s) per path, "), "{out}");
     let header: Vec<&str> = lines[1].split_whitespace().collect();
     assert_eq!(
         header,
@@ -439,10 +439,22 @@ fn bench_reports_both_paths() {
     let reference: Vec<&str> = lines[3].split_whitespace().collect();
     assert_eq!(reference[0], "reference", "{out}");
     assert_eq!(reference[reference.len() - 1], "20", "{out}");
+    let threaded: Vec<&str> = lines[4].split_whitespace().collect();
+    assert_eq!((threaded[0], threaded[1]), ("2", "thr"), "{out}");
+    assert!(threaded[6].ends_with("x/1"), "{out}");
+    assert_eq!(threaded[threaded.len() - 1], "20", "{out}");
 
     let json = stdout(&voodoo(
         &dir,
-        &["bench", "--iters", "1", "--json", "tiny.trace"],
+        &[
+            "bench",
+            "--iters",
+            "1",
+            "--threads",
+            "1",
+            "--json",
+            "tiny.trace",
+        ],
     ));
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     assert_eq!(v["iters"], 1);
@@ -464,5 +476,7 @@ fn bench_reports_both_paths() {
         assert!(scene[path].get("cycles_per_pixel").is_some(), "{json}");
     }
     assert!(scene["speedup"].as_f64().unwrap() > 0.0);
+    assert_eq!(scene["threads"], 1);
+    assert!(scene["threaded"].is_null(), "{json}");
     std::fs::remove_dir_all(dir).unwrap();
 }
