@@ -108,7 +108,11 @@ impl Fbi {
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn walk_spans_avx2<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
+    unsafe fn walk_spans_avx2<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        tex: &mut T,
+    ) {
         self.walk::<M, T, true>(st, tex);
     }
 

@@ -251,7 +251,7 @@ struct Header {
 /// end of the input, so the last item of a trace that disagrees with its header is a
 /// [`BinaryError::HeaderMismatch`].
 pub struct BinaryReader<R> {
-    input: R,
+    input: Buffered<R>,
     /// Byte offset of the next unread byte.
     pos: u64,
     header: Header,
@@ -322,7 +322,7 @@ impl<R: std::io::Read> BinaryReader<R> {
             });
         }
         Ok(Self {
-            input,
+            input: Buffered::new(input),
             pos: u64::from(header_len),
             header,
             config: sst1_board::BoardConfig::default(),
@@ -341,8 +341,15 @@ impl<R: std::io::Read> BinaryReader<R> {
     }
 
     /// Reads `buf.len()` bytes of the record that starts at `start`.
+    #[inline]
     fn read(&mut self, buf: &mut [u8], start: u64) -> Result<(), BinaryError> {
-        read_full(&mut self.input, buf, start, RECORD)?;
+        let got = self.input.take(buf).map_err(|e| io_error(start, &e))?;
+        if got < buf.len() {
+            return Err(BinaryError::Truncated {
+                offset: offset(start),
+                what: RECORD,
+            });
+        }
         self.pos += buf.len() as u64;
         Ok(())
     }
@@ -360,17 +367,18 @@ impl<R: std::io::Read> BinaryReader<R> {
     }
 
     /// The next record's first byte, or `None` at the end of the input.
+    #[inline]
     fn tag(&mut self) -> Result<Option<u8>, BinaryError> {
         let mut b = [0u8; 1];
-        loop {
-            match self.input.read(&mut b) {
-                Ok(0) => return Ok(None),
-                Ok(_) => {
-                    self.pos += 1;
-                    return Ok(Some(b[0]));
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-                Err(e) => return Err(io_error(self.pos, &e)),
+        match self
+            .input
+            .take(&mut b)
+            .map_err(|e| io_error(self.pos, &e))?
+        {
+            0 => Ok(None),
+            _ => {
+                self.pos += 1;
+                Ok(Some(b[0]))
             }
         }
     }
@@ -530,6 +538,74 @@ fn io_error(pos: u64, e: &std::io::Error) -> BinaryError {
     BinaryError::Io {
         offset: offset(pos),
         message: e.to_string(),
+    }
+}
+
+/// The records' input behind a buffer of its own: a record's fields are copied out of
+/// the buffer, and the input is read only when the buffer runs dry (a read per field
+/// through a generic `Read` cost more than the replay of the write it carries).
+struct Buffered<R> {
+    input: R,
+    buf: Box<[u8]>,
+    /// Unread bytes are `buf[at..len]`.
+    at: usize,
+    len: usize,
+}
+
+impl<R: std::io::Read> Buffered<R> {
+    /// The buffer's size.
+    const SIZE: usize = 64 << 10;
+
+    fn new(input: R) -> Self {
+        Self {
+            input,
+            buf: vec![0; Self::SIZE].into_boxed_slice(),
+            at: 0,
+            len: 0,
+        }
+    }
+
+    /// Copies up to `out.len()` bytes into `out`; fewer only at the end of the input.
+    #[inline]
+    fn take(&mut self, out: &mut [u8]) -> std::io::Result<usize> {
+        if let Some(src) = self.buf.get(self.at..self.at + out.len()) {
+            if self.at + out.len() <= self.len {
+                out.copy_from_slice(src);
+                self.at += out.len();
+                return Ok(out.len());
+            }
+        }
+        self.take_slow(out)
+    }
+
+    /// [`Buffered::take`] across a refill.
+    #[cold]
+    fn take_slow(&mut self, out: &mut [u8]) -> std::io::Result<usize> {
+        let mut filled = 0;
+        while filled < out.len() {
+            if self.at == self.len {
+                self.at = 0;
+                self.len = 0;
+                loop {
+                    match self.input.read(&mut self.buf) {
+                        Ok(n) => {
+                            self.len = n;
+                            break;
+                        }
+                        Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                        Err(e) => return Err(e),
+                    }
+                }
+                if self.len == 0 {
+                    break;
+                }
+            }
+            let n = (out.len() - filled).min(self.len - self.at);
+            out[filled..filled + n].copy_from_slice(&self.buf[self.at..self.at + n]);
+            self.at += n;
+            filled += n;
+        }
+        Ok(filled)
     }
 }
 
