@@ -29,12 +29,14 @@ mod format;
 mod layout;
 mod lod;
 mod sample;
+mod span;
 
 use cache::TexelCache;
 pub use combine::DetailRule;
 use combine::{detail_factor, Factors, TextureCombine};
 use layout::Layout;
 use sample::SpanRecip;
+pub use span::{ColourLanes, LaneOutput, Lanes, LANES, ZERO_COLOUR};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
 
@@ -450,6 +452,10 @@ pub struct Tmu {
     cached: bool,
     /// Perspective factors of the span being shaded.
     span: SpanRecip,
+    /// The span kernels' lane values (module `span`), kept between chunks.
+    lanes: Option<Box<span::Chunk>>,
+    /// Lane outputs of [`Tmu::texels_kept`], kept for the next TMU down the chain.
+    kept: Option<Box<ColourLanes>>,
 }
 
 /// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero
@@ -492,6 +498,8 @@ impl Tmu {
             box86: Default::default(),
             cached: true,
             span: SpanRecip::default(),
+            lanes: None,
+            kept: None,
         }
     }
 

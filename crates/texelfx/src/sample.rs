@@ -173,7 +173,7 @@ impl Tmu {
     /// texels decoded as `D` (a [`Decode`] constant, so that each format gets its own
     /// copy of the loop without a per-texel branch).
     #[inline]
-    fn filter<const D: u8>(
+    pub(crate) fn filter<const D: u8>(
         &self,
         precision: BilinearPrecision,
         point: bool,
@@ -361,7 +361,7 @@ pub(crate) fn box86_divide(v: i64, oow: i64) -> i32 {
 /// sum to 256. The four channels are spread over 16-bit lanes of a `u64`: each product
 /// and the sum stay below `255 * 256 < 2^16`, so lanes never carry into each other.
 #[inline(always)]
-fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
+pub(crate) fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
     let spread = |v: u32| u64::from(v & 0x00ff_00ff) | u64::from((v >> 8) & 0x00ff_00ff) << 32;
     let mut sum = 0u64;
     for (v, w) in texels.into_iter().zip(weights) {
@@ -375,8 +375,8 @@ fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
 ///
 /// Clamping pins both to 0 below the texture and both to the last texel at or beyond it
 /// (MAME `fetch_texel`; DOSBox clamps each one, which gives the same pair).
-#[inline]
-fn neighbours(c: i32, max: i32, clamp: bool) -> (u32, u32) {
+#[inline(always)]
+pub(crate) fn neighbours(c: i32, max: i32, clamp: bool) -> (u32, u32) {
     let (mut c0, mut c1) = (c, c.wrapping_add(1));
     if clamp {
         if c0 < 0 {

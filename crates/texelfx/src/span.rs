@@ -1,0 +1,651 @@
+//! Span kernels of the TMU: the texels of a chunk of up to [`LANES`] pixels of one span,
+//! computed a stage at a time over all of them (structure of arrays), where
+//! [`Tmu::texel`] runs every stage for one pixel.
+//!
+//! Stages, each one loop over the lanes, in the order of [`Tmu::texel`] (module `sample`
+//! for the arithmetic of each):
+//!
+//! 1. S, T, W iteration;
+//! 2. texture coordinates: the perspective divide as [`crate::PerspDivide`] says, or the
+//!    shift of affine texturing, and `tclampw`;
+//! 3. LOD per lane (its W term, bias, dither, clamp), integer LOD, point or bilinear;
+//! 4. the levels the live lanes need are decoded into the cache (module `cache`), then
+//!    each live lane is point sampled or filtered from it;
+//! 5. the detail factor and LOD fraction, and the combine unit (module [`crate::combine`])
+//!    channel by channel over the lanes.
+//!
+//! Every choice that depends only on the registers and the model (perspective, divide,
+//! LOD arithmetic, clamps, combine selections) is made once per chunk; what depends on the
+//! pixel (its LOD, and so its level, filter and detail factor) is a lane value. No table of
+//! states: every `textureMode` / `tLOD` / `tDetail` combination and every model runs here.
+//!
+//! Bit-identical to [`Tmu::texel`] for every live lane (the test
+//! `span_lanes_match_per_pixel_texels` compares them over random states). Only live lanes
+//! touch state (the decoded-texel cache, the 86Box cache's lent entry); the cache is a
+//! memo of decodes that cannot change during a triangle, so decoding the levels a chunk
+//! needs before its lanes sample gives the texels the per-pixel order does. Dead lanes
+//! compute values that are thrown away, with wrapping arithmetic and checked indexing so
+//! that they cannot panic.
+
+use sst1_regs::{TLod, TextureMode};
+
+use crate::combine::{self, detail_factor, AddLocal, MSelect, TextureCombine, UnitControl};
+use crate::format::Decode;
+use crate::lod::{self, f64_to_i32_x86, DITHER_4X4};
+use crate::sample::{blend4, box86_divide, box86_oow, neighbours};
+use crate::{
+    BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodDither, LodZeroFrac, Output,
+    PerspDivide, TexelModel, Tmu, Trilinear,
+};
+
+/// Lanes of one chunk; the FBI's span kernels use the same width (`pixelfx::span::LANES`,
+/// checked where the chain joins the two).
+pub const LANES: usize = 64;
+
+/// One value per lane.
+pub type Lanes = [i32; LANES];
+
+/// R, G, B, A lanes, each 0..=255 where it counts.
+pub type ColourLanes = [Lanes; 4];
+
+/// What [`Tmu::texels`] computes for each lane.
+#[derive(Clone, Copy)]
+pub enum LaneOutput<'a> {
+    /// The combine unit's output with these upstream lanes ([`Tmu::texel`]).
+    Combined(&'a ColourLanes),
+    /// The filtered texel alone ([`Tmu::texel_uncombined`]).
+    Texel,
+    /// 86Box's upstream-TMU combine with the downstream TMU's `textureMode`
+    /// ([`Tmu::texel_box86_upstream`]).
+    Box86Upstream(u32),
+}
+
+/// The per-lane values of one chunk, stage by stage. Kept by the TMU between chunks
+/// (`Tmu::lanes`), so that a chunk does not clear 4 KiB first: lanes a stage does not write
+/// hold values of an earlier chunk, which only dead lanes read.
+pub(crate) struct Chunk {
+    /// Iterated S, T, W (.32).
+    s: [i64; LANES],
+    t: [i64; LANES],
+    w: [i64; LANES],
+    /// Texture coordinates, 24.8 texels of LOD 0.
+    cs: Lanes,
+    ct: Lanes,
+    /// Clamped LOD, 8.8.
+    lod: Lanes,
+    /// Integer LOD sampled (a stored level, at most 8).
+    ilod: Lanes,
+    /// The integer LOD before skipping a level the TMU does not hold is odd (0 or 1).
+    odd: Lanes,
+    /// Point sampling (1) or bilinear (0).
+    point: Lanes,
+    /// The filtered texels (`c_local`), R, G, B, A.
+    local: ColourLanes,
+    /// Detail factor (0.8), where the combine reads it.
+    detail: Lanes,
+    /// LOD fraction (0.8), where the combine reads it.
+    lod_fraction: Lanes,
+}
+
+impl Chunk {
+    fn new() -> Box<Self> {
+        Box::new(Self {
+            s: [0; LANES],
+            t: [0; LANES],
+            w: [0; LANES],
+            cs: [0; LANES],
+            ct: [0; LANES],
+            lod: [0; LANES],
+            ilod: [0; LANES],
+            odd: [0; LANES],
+            point: [0; LANES],
+            local: [[0; LANES]; 4],
+            detail: [0; LANES],
+            lod_fraction: [0; LANES],
+        })
+    }
+}
+
+/// Zero in every lane.
+static ZERO: Lanes = [0; LANES];
+
+/// Black and transparent in every lane: the `other` lanes of the last TMU of a chain.
+pub static ZERO_COLOUR: ColourLanes = [[0; LANES]; 4];
+
+impl Tmu {
+    /// The TMU's output for the live lanes of one chunk: lane `i` is the pixel at offset
+    /// `(dx0 + i, dy)` from vertex A, screen position `(x0 + i, y)` (as [`Tmu::texel`]
+    /// takes them). For each `i < n` with `alive[i]`, lane `i` of `out` gets what
+    /// [`Tmu::texel`] (or the call `what` names) gives for that pixel, bit for bit; other
+    /// lanes of `out` are left as they are.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn texels<M: TexelModel>(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+        out: &mut ColourLanes,
+    ) {
+        let n = n.min(LANES);
+        if !alive[..n].iter().any(|&a| a) {
+            return;
+        }
+        if !self.cached && self.box86.lent.is_none() {
+            // The generic path decodes from memory for every texel: per pixel.
+            self.texels_per_pixel::<M>(dx0, dy, x0, y, alive, n, what, out);
+            return;
+        }
+        let profile = M::texel(&self.profile);
+        if self.lut_stale {
+            self.rebuild_lut();
+        }
+        let mut c = self.lanes.take().unwrap_or_else(Chunk::new);
+        self.iterate_lanes(dx0, dy, n, &mut c);
+        coords_lanes(
+            TextureMode(self.texture_mode),
+            profile.persp_divide,
+            profile.coord_rounding,
+            n,
+            &mut c,
+        );
+        self.lod_lanes::<M>(x0, y, n, &mut c);
+        self.fetch_lanes::<M>(alive, n, &mut c);
+
+        let zero_frac =
+            profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
+        let trilinear = profile.trilinear == Trilinear::Spec;
+        match what {
+            LaneOutput::Texel => store(alive, n, &c.local, out),
+            LaneOutput::Combined(_) if self.passthrough => store(alive, n, &c.local, out),
+            LaneOutput::Combined(other) => {
+                let uses = |m| self.combine.rgb.mselect == m || self.combine.alpha.mselect == m;
+                if uses(MSelect::DetailFactor) {
+                    for i in 0..n {
+                        c.detail[i] =
+                            i32::from(detail_factor(self.t_detail, c.lod[i], profile.detail));
+                    }
+                }
+                if uses(MSelect::LodFraction) {
+                    for i in 0..n {
+                        c.lod_fraction[i] = c.lod[i] & 0xff;
+                    }
+                }
+                let factors = Factors {
+                    detail: &c.detail,
+                    lod_fraction: if zero_frac { &ZERO } else { &c.lod_fraction },
+                    // The reverse of `reverse_blend` on odd LODs (trilinear).
+                    odd: (trilinear && self.combine.trilinear).then_some(&c.odd),
+                };
+                combine_lanes(&self.combine, &c.local, other, &factors, alive, n, out);
+            }
+            LaneOutput::Box86Upstream(mode) => {
+                let downstream = TextureCombine::from_texture_mode(mode);
+                for i in 0..n {
+                    if !alive[i] {
+                        continue;
+                    }
+                    let f = combine::Factors {
+                        detail: detail_factor(self.t_detail, c.lod[i], profile.detail),
+                        lod_fraction: if zero_frac {
+                            0
+                        } else {
+                            (c.lod[i] & 0xff) as u8
+                        },
+                        odd_lod: trilinear && c.odd[i] != 0,
+                    };
+                    let texel = core::array::from_fn(|ch| c.local[ch][i] as u8);
+                    let v = self.combine.combine_box86_upstream(texel, &f, &downstream);
+                    for ch in 0..4 {
+                        out[ch][i] = i32::from(v[ch]);
+                    }
+                }
+            }
+        }
+        self.lanes = Some(c);
+    }
+
+    /// [`Tmu::texels`] into lanes the TMU keeps, for the next TMU of the chain to read as
+    /// its `other` lanes: the live lanes as [`Tmu::texels`] gives them, the others
+    /// anything in 0..=255.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn texels_kept<M: TexelModel>(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+    ) -> &ColourLanes {
+        let mut kept = self
+            .kept
+            .take()
+            .unwrap_or_else(|| Box::new([[0; LANES]; 4]));
+        self.texels::<M>(dx0, dy, x0, y, alive, n, what, &mut kept);
+        self.kept.insert(kept)
+    }
+
+    /// [`Tmu::texels`] one pixel at a time through [`Tmu::output`].
+    #[allow(clippy::too_many_arguments)]
+    #[cold]
+    fn texels_per_pixel<M: TexelModel>(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+        out: &mut ColourLanes,
+    ) {
+        for i in 0..n {
+            if !alive[i] {
+                continue;
+            }
+            let what = match what {
+                LaneOutput::Combined(o) => Output::Combined(sst1_regs::Rgba {
+                    r: o[0][i] as u8,
+                    g: o[1][i] as u8,
+                    b: o[2][i] as u8,
+                    a: o[3][i] as u8,
+                }),
+                LaneOutput::Texel => Output::Texel,
+                LaneOutput::Box86Upstream(m) => Output::Box86Upstream(m),
+            };
+            let (dx, x) = (dx0.wrapping_add(i as i32), x0.wrapping_add(i as i32));
+            let v = self.output::<M>(dx, dy, x, y, what);
+            out[0][i] = i32::from(v.r);
+            out[1][i] = i32::from(v.g);
+            out[2][i] = i32::from(v.b);
+            out[3][i] = i32::from(v.a);
+        }
+    }
+
+    /// Stage 1: S, T, W of each lane, `start + dx * d/dx + dy * d/dy` mod 2^64 (the first
+    /// lane's value plus `i` steps: the same sum).
+    #[inline(always)]
+    fn iterate_lanes(&self, dx0: i32, dy: i32, n: usize, c: &mut Chunk) {
+        for (k, lanes) in [&mut c.s, &mut c.t, &mut c.w].into_iter().enumerate() {
+            let (v0, d) = (self.iterated(k, dx0, dy), self.ddx[k]);
+            for (i, v) in lanes[..n].iter_mut().enumerate() {
+                *v = v0.wrapping_add((i as i64).wrapping_mul(d));
+            }
+        }
+    }
+
+    /// Stage 3: the LOD of each lane, its level, parity and filter (as [`Tmu::sample`]
+    /// and [`lod::pixel_lod`]).
+    #[inline(always)]
+    fn lod_lanes<M: TexelModel>(&self, x0: i32, y: i32, n: usize, c: &mut Chunk) {
+        let profile = M::texel(&self.profile);
+        let mode = TextureMode(self.texture_mode);
+        let tl = TLod(self.t_lod);
+        let mut base = self.lod_base;
+        // 86Box adds the bias at setup (see `lod::lod_base`).
+        if profile.lod != LodCalc::Box86 {
+            base = base.wrapping_add(tl.lodbias() << 6);
+        }
+        let lo = (tl.lodmin() << 6) as i32;
+        // UNVERIFIED (as `lod::pixel_lod`): lodmax capped at 8.0.
+        let hi = ((tl.lodmax() << 6) as i32).min(0x800);
+        let lod = &mut c.lod;
+        if mode.tpersp_st() {
+            match profile.lod {
+                LodCalc::Mame => w_terms(&c.w, n, lod, |w| lod::w_term(LodCalc::Mame, w)),
+                LodCalc::Dosbox => {
+                    // Source: DOSBox Staging `TEXTURE_PIPELINE` (as `lod::w_term`).
+                    let table = lod::reciplog_table();
+                    w_terms(&c.w, n, lod, |w| lod::reciplog_in(table, w).1)
+                }
+                LodCalc::Box86 => w_terms(&c.w, n, lod, |w| lod::w_term(LodCalc::Box86, w)),
+            }
+        } else {
+            lod[..n].fill(0);
+        }
+        // Only perspective texturing adds the W term.
+        for v in lod[..n].iter_mut() {
+            *v = v.wrapping_add(base);
+        }
+        if mode.tloddither() && profile.lod_dither == LodDither::Matrix4x4 {
+            // Source: MAME `fetch_texel`, DOSBox `TEXTURE_PIPELINE` (as `lod::pixel_lod`).
+            let row = &DITHER_4X4[(y & 3) as usize];
+            for (i, v) in lod[..n].iter_mut().enumerate() {
+                let x = x0.wrapping_add(i as i32);
+                *v = v.wrapping_add(i32::from(row[(x & 3) as usize]) << 4);
+            }
+        }
+        // A lodmin above lodmax gives lodmin (as `lod::pixel_lod`).
+        for v in lod[..n].iter_mut() {
+            *v = (*v).min(hi).max(lo);
+        }
+        let lodmask = self.layout.lodmask as i32;
+        for i in 0..n {
+            // lod >= 0 after the clamp, so the integer part is 0..=15.
+            let raw = lod[i] >> 8;
+            let skip = !(lodmask >> raw) & 1;
+            // UNVERIFIED (as `Tmu::sample`): an odd-only texture at LOD 8 stays on LOD 8.
+            c.ilod[i] = (raw + skip).min(8);
+            c.odd[i] = raw & 1;
+        }
+        let (mag, min) = (!mode.tmagfilter() as i32, !mode.tminfilter() as i32);
+        match profile.filter_select {
+            FilterSelect::ByLod if mag == min => c.point[..n].fill(mag),
+            FilterSelect::ByLod => {
+                for i in 0..n {
+                    c.point[i] = if lod[i] == lo { mag } else { min };
+                }
+            }
+            FilterSelect::EitherBit => c.point[..n].fill(mag & min),
+        }
+    }
+
+    /// Stage 4: decodes the levels the live lanes sample, then samples each live lane
+    /// (the arithmetic of [`Tmu::sample`]'s filter, with the level looked up once per
+    /// chunk when all live lanes sample one level).
+    #[inline(always)]
+    fn fetch_lanes<M: TexelModel>(&mut self, alive: &[bool; LANES], n: usize, c: &mut Chunk) {
+        let profile = M::texel(&self.profile);
+        let mut needed = 0u32;
+        for i in 0..n {
+            if alive[i] {
+                needed |= 1 << c.ilod[i];
+            }
+        }
+        let mut missing = needed;
+        while missing != 0 {
+            let lod = missing.trailing_zeros() as usize;
+            missing &= missing - 1;
+            if !self.cache.has(lod) {
+                self.decode_level(lod);
+            }
+        }
+        let mode = TextureMode(self.texture_mode);
+        let clamp = (mode.tclamps(), mode.tclampt());
+        let point = c.point[0];
+        let one_filter = c.point[1..n].iter().all(|&p| p == point);
+        let local = &mut c.local;
+        match profile.bilinear {
+            BilinearPrecision::Bits4 if needed.is_power_of_two() && one_filter => {
+                let lod = needed.trailing_zeros() as usize;
+                let at = LevelAt::new(self, lod, clamp);
+                if point != 0 {
+                    for i in 0..n {
+                        let v = at.point(c.cs[i], c.ct[i]);
+                        unpack(local, i, alive[i], v);
+                    }
+                } else {
+                    for i in 0..n {
+                        let v = at.bilinear4(c.cs[i], c.ct[i]);
+                        unpack(local, i, alive[i], v);
+                    }
+                }
+            }
+            BilinearPrecision::Bits4 => {
+                for i in 0..n {
+                    if !alive[i] {
+                        continue;
+                    }
+                    let at = LevelAt::new(self, c.ilod[i] as usize, clamp);
+                    let v = if c.point[i] != 0 {
+                        at.point(c.cs[i], c.ct[i])
+                    } else {
+                        at.bilinear4(c.cs[i], c.ct[i])
+                    };
+                    unpack(local, i, true, v);
+                }
+            }
+            BilinearPrecision::Bits8 => {
+                for i in 0..n {
+                    if !alive[i] {
+                        continue;
+                    }
+                    let texel = self.filter::<{ Decode::CACHED }>(
+                        profile.bilinear,
+                        c.point[i] != 0,
+                        c.ilod[i] as usize,
+                        c.cs[i],
+                        c.ct[i],
+                    );
+                    for ch in 0..4 {
+                        local[ch][i] = i32::from(texel[ch]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Lane `i` of `local` from an `0xAARRGGBB` texel, if the lane is live.
+#[inline(always)]
+fn unpack(local: &mut ColourLanes, i: usize, live: bool, argb: u32) {
+    if live {
+        local[0][i] = (argb >> 16 & 0xff) as i32;
+        local[1][i] = (argb >> 8 & 0xff) as i32;
+        local[2][i] = (argb & 0xff) as i32;
+        local[3][i] = (argb >> 24) as i32;
+    }
+}
+
+/// One decoded level of the bound texture, looked up once for the lanes that sample it:
+/// point sampling and 4-bit bilinear as `Tmu::point` and `Tmu::bilinear` compute them
+/// from the cache.
+struct LevelAt<'a> {
+    texels: &'a [u32],
+    /// The LOD.
+    lod: u32,
+    /// Width minus 1, height minus 1.
+    smax: i32,
+    tmax: i32,
+    /// `tclamps`, `tclampt`.
+    clamp: (bool, bool),
+}
+
+impl<'a> LevelAt<'a> {
+    #[inline(always)]
+    fn new(tmu: &'a Tmu, lod: usize, clamp: (bool, bool)) -> Self {
+        Self {
+            texels: tmu.cache.level(lod),
+            lod: lod as u32,
+            smax: tmu.layout.smax(lod) as i32,
+            tmax: tmu.layout.tmax(lod) as i32,
+            clamp,
+        }
+    }
+
+    /// Texel `(s, t)` (in range); a level shorter than its layout (a caller bug, as in
+    /// `TexelCache::texel`) reads 0.
+    #[inline(always)]
+    fn texel(&self, s: u32, t: u32) -> u32 {
+        let i = t.wrapping_mul(self.smax as u32 + 1).wrapping_add(s) as usize;
+        self.texels.get(i).copied().unwrap_or(0)
+    }
+
+    /// Point sampling of 24.8 LOD-0 coordinates.
+    #[inline(always)]
+    fn point(&self, s: i32, t: i32) -> u32 {
+        let mut s = s >> (self.lod + 8);
+        let mut t = t >> (self.lod + 8);
+        if self.clamp.0 {
+            s = s.clamp(0, self.smax);
+        }
+        if self.clamp.1 {
+            t = t.clamp(0, self.tmax);
+        }
+        self.texel((s & self.smax) as u32, (t & self.tmax) as u32)
+    }
+
+    /// 4-bit bilinear filtering of 24.8 LOD-0 coordinates (half a texel subtracted here).
+    #[inline(always)]
+    fn bilinear4(&self, s: i32, t: i32) -> u32 {
+        let s = (s >> self.lod).wrapping_sub(0x80);
+        let t = (t >> self.lod).wrapping_sub(0x80);
+        let (s0, s1) = neighbours(s >> 8, self.smax, self.clamp.0);
+        let (t0, t1) = neighbours(t >> 8, self.tmax, self.clamp.1);
+        let c = [
+            self.texel(s0, t0),
+            self.texel(s1, t0),
+            self.texel(s0, t1),
+            self.texel(s1, t1),
+        ];
+        let (u, v) = ((s as u32 & 0xff) >> 4, (t as u32 & 0xff) >> 4);
+        blend4(c, [(16 - u) * (16 - v), u * (16 - v), (16 - u) * v, u * v])
+    }
+}
+
+/// `lod[i] = term(w[i])` for the first `n` lanes.
+#[inline(always)]
+fn w_terms(w: &[i64; LANES], n: usize, lod: &mut Lanes, term: impl Fn(i64) -> i32) {
+    for (v, &w) in lod[..n].iter_mut().zip(&w[..n]) {
+        *v = term(w);
+    }
+}
+
+/// Stage 2: the 24.8 texture coordinates of each lane and `tclampw` (as [`Tmu::sample`]).
+#[inline(always)]
+fn coords_lanes(
+    mode: TextureMode,
+    divide: PerspDivide,
+    rounding: CoordRounding,
+    n: usize,
+    c: &mut Chunk,
+) {
+    let floor = rounding == CoordRounding::Floor;
+    let (s, t, w) = (&c.s, &c.t, &c.w);
+    let (cs, ct) = (&mut c.cs, &mut c.ct);
+    match (mode.tpersp_st(), divide) {
+        (true, PerspDivide::DosboxReciprocal) => {
+            let table = lod::reciplog_table();
+            for i in 0..n {
+                // Source: DOSBox Staging `TEXTURE_PIPELINE` (see `Tmu::sample`).
+                let (oow, _) = lod::reciplog_in(table, w[i]);
+                cs[i] = (oow.wrapping_mul(s[i]) >> 29) as i32 >> 10;
+                ct[i] = (oow.wrapping_mul(t[i]) >> 29) as i32 >> 10;
+            }
+        }
+        (true, PerspDivide::Box86) => {
+            for i in 0..n {
+                let oow = box86_oow(w[i]);
+                cs[i] = box86_divide(s[i], oow);
+                ct[i] = box86_divide(t[i], oow);
+            }
+        }
+        (true, PerspDivide::Double) => {
+            // MAME: S * (256 / W) in doubles, truncated, or floored (see `Tmu::sample`).
+            let div = |v: i64, recip: f64| {
+                let q = v as f64 * recip;
+                let i = f64_to_i32_x86(q);
+                if floor && (i as f64) > q && i != i32::MIN {
+                    i - 1
+                } else {
+                    i
+                }
+            };
+            for i in 0..n {
+                let recip = 256.0 / w[i] as f64;
+                cs[i] = div(s[i], recip);
+                ct[i] = div(t[i], recip);
+            }
+        }
+        (false, _) if floor => {
+            for i in 0..n {
+                cs[i] = (s[i] >> 24) as i32;
+                ct[i] = (t[i] >> 24) as i32;
+            }
+        }
+        (false, _) => {
+            let to_i32 = |v: i64| i32::try_from(v / (1 << 24)).unwrap_or(i32::MIN);
+            for i in 0..n {
+                cs[i] = to_i32(s[i]);
+                ct[i] = to_i32(t[i]);
+            }
+        }
+    }
+    if mode.tclampw() {
+        for i in 0..n {
+            if w[i] < 0 {
+                cs[i] = 0;
+                ct[i] = 0;
+            }
+        }
+    }
+}
+
+/// The combine unit's per-pixel inputs besides the colours, per lane.
+struct Factors<'a> {
+    /// Detail factor (0.8).
+    detail: &'a Lanes,
+    /// LOD fraction (0.8).
+    lod_fraction: &'a Lanes,
+    /// With trilinear in force: 1 where the LOD is odd, reversing the blend.
+    odd: Option<&'a Lanes>,
+}
+
+/// Copies the live lanes of `from` into `out`.
+#[inline(always)]
+fn store(alive: &[bool; LANES], n: usize, from: &ColourLanes, out: &mut ColourLanes) {
+    for ch in 0..4 {
+        for i in 0..n {
+            if alive[i] {
+                out[ch][i] = from[ch][i];
+            }
+        }
+    }
+}
+
+/// Stage 5: the combine unit over the lanes, one channel at a time (the arithmetic of
+/// `combine::channel`): `clamp((blend * (factor + 1)) >> 8 + add)`, inverted if asked.
+#[inline(always)]
+fn combine_lanes(
+    tc: &TextureCombine,
+    local: &ColourLanes,
+    other: &ColourLanes,
+    f: &Factors<'_>,
+    alive: &[bool; LANES],
+    n: usize,
+    out: &mut ColourLanes,
+) {
+    for ch in 0..4 {
+        let u: &UnitControl = if ch == 3 { &tc.alpha } else { &tc.rgb };
+        let factor: &Lanes = match u.mselect {
+            MSelect::Zero | MSelect::Reserved => &ZERO,
+            MSelect::CLocal => &local[ch],
+            MSelect::AOther => &other[3],
+            MSelect::ALocal => &local[3],
+            MSelect::DetailFactor => f.detail,
+            MSelect::LodFraction => f.lod_fraction,
+        };
+        let add: &Lanes = match u.add {
+            AddLocal::None => &ZERO,
+            AddLocal::CLocal => &local[ch],
+            AddLocal::ALocal => &local[3],
+        };
+        let keep_other = if u.zero_other { 0 } else { -1 };
+        let sub_local = if u.sub_clocal { -1 } else { 0 };
+        // factor ^ 0xff unless reverse_blend (itself reversed on odd trilinear LODs).
+        let flip = if u.reverse_blend { 0 } else { 0xff };
+        let invert = if u.invert_output { 0xff } else { 0 };
+        let (odd, odd_flip) = match f.odd {
+            Some(odd) => (odd, 0xff),
+            None => (&ZERO, 0),
+        };
+        let (c_other, c_local) = (&other[ch], &local[ch]);
+        let o = &mut out[ch];
+        for i in 0..n {
+            let blend = (c_other[i] & keep_other).wrapping_sub(c_local[i] & sub_local);
+            let fac = factor[i] ^ flip ^ (odd[i].wrapping_neg() & odd_flip);
+            let v = (blend.wrapping_mul(fac.wrapping_add(1)) >> 8).wrapping_add(add[i]);
+            let v = v.clamp(0, 255) ^ invert;
+            if alive[i] {
+                o[i] = v;
+            }
+        }
+    }
+}
