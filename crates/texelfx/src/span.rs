@@ -27,12 +27,15 @@
 //! compute values that are thrown away, with wrapping arithmetic and checked indexing so
 //! that they cannot panic.
 
+// Each lane loop reads and writes several arrays of one chunk by the lane number.
+#![allow(clippy::needless_range_loop)]
+
 use sst1_regs::{TLod, TextureMode};
 
 use crate::combine::{self, detail_factor, AddLocal, MSelect, TextureCombine, UnitControl};
 use crate::format::Decode;
 use crate::lod::{self, f64_to_i32_x86, DITHER_4X4};
-use crate::sample::{blend4, box86_divide, box86_oow, neighbours};
+use crate::sample::{box86_divide, box86_oow};
 use crate::{
     BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodDither, LodZeroFrac, Output,
     PerspDivide, TexelModel, Tmu, Trilinear,
@@ -79,6 +82,13 @@ pub(crate) struct Chunk {
     odd: Lanes,
     /// Point sampling (1) or bilinear (0).
     point: Lanes,
+    /// The four texel indices of a bilinear fetch (all four the texel when point
+    /// sampled), within the lane's level.
+    taps: [[u32; LANES]; 4],
+    /// The four texels (`0xAARRGGBB`) at `taps`.
+    texels: [[u32; LANES]; 4],
+    /// The 4-bit bilinear fractions in S and T (0 when point sampled).
+    frac: [[u32; LANES]; 2],
     /// The filtered texels (`c_local`), R, G, B, A.
     local: ColourLanes,
     /// Detail factor (0.8), where the combine reads it.
@@ -99,6 +109,9 @@ impl Chunk {
             ilod: [0; LANES],
             odd: [0; LANES],
             point: [0; LANES],
+            taps: [[0; LANES]; 4],
+            texels: [[0; LANES]; 4],
+            frac: [[0; LANES]; 2],
             local: [[0; LANES]; 4],
             detail: [0; LANES],
             lod_fraction: [0; LANES],
@@ -369,135 +382,184 @@ impl Tmu {
         }
         let mode = TextureMode(self.texture_mode);
         let clamp = (mode.tclamps(), mode.tclampt());
-        let point = c.point[0];
-        let one_filter = c.point[1..n].iter().all(|&p| p == point);
+        if profile.bilinear == BilinearPrecision::Bits8 {
+            // The Voodoo 2's 8-bit weights (no model of the SST-1 uses them): per lane.
+            for i in 0..n {
+                if !alive[i] {
+                    continue;
+                }
+                let texel = self.filter::<{ Decode::CACHED }>(
+                    profile.bilinear,
+                    c.point[i] != 0,
+                    c.ilod[i] as usize,
+                    c.cs[i],
+                    c.ct[i],
+                );
+                for ch in 0..4 {
+                    c.local[ch][i] = i32::from(texel[ch]);
+                }
+            }
+            return;
+        }
+        let one_level = needed.is_power_of_two();
+        let all_point = c.point[..n].iter().all(|&p| p != 0);
+        let (wmask, hmask) = (self.layout.wmask, self.layout.hmask);
+        if one_level {
+            let lod = needed.trailing_zeros();
+            taps_lanes(n, c, clamp, all_point, |_| lod, wmask, hmask);
+        } else {
+            taps_lanes(n, c, clamp, all_point, |i| i as u32, wmask, hmask);
+        }
+        let tap_count = if all_point { 1 } else { 4 };
+        let (taps, texels) = (&c.taps, &mut c.texels);
+        if one_level {
+            let level = self.cache.level(needed.trailing_zeros() as usize);
+            for k in 0..tap_count {
+                for i in 0..n {
+                    texels[k][i] = level.get(taps[k][i] as usize).copied().unwrap_or(0);
+                }
+            }
+        } else {
+            for k in 0..tap_count {
+                for i in 0..n {
+                    let level = self.cache.level(c.ilod[i] as usize);
+                    texels[k][i] = level.get(taps[k][i] as usize).copied().unwrap_or(0);
+                }
+            }
+        }
         let local = &mut c.local;
-        match profile.bilinear {
-            BilinearPrecision::Bits4 if needed.is_power_of_two() && one_filter => {
-                let lod = needed.trailing_zeros() as usize;
-                let at = LevelAt::new(self, lod, clamp);
-                if point != 0 {
-                    for i in 0..n {
-                        let v = at.point(c.cs[i], c.ct[i]);
-                        unpack(local, i, alive[i], v);
-                    }
-                } else {
-                    for i in 0..n {
-                        let v = at.bilinear4(c.cs[i], c.ct[i]);
-                        unpack(local, i, alive[i], v);
-                    }
+        if all_point {
+            for (ch, shift) in [16, 8, 0, 24].into_iter().enumerate() {
+                for i in 0..n {
+                    local[ch][i] = (texels[0][i] >> shift & 0xff) as i32;
                 }
             }
-            BilinearPrecision::Bits4 => {
-                for i in 0..n {
-                    if !alive[i] {
-                        continue;
-                    }
-                    let at = LevelAt::new(self, c.ilod[i] as usize, clamp);
-                    let v = if c.point[i] != 0 {
-                        at.point(c.cs[i], c.ct[i])
-                    } else {
-                        at.bilinear4(c.cs[i], c.ct[i])
-                    };
-                    unpack(local, i, true, v);
-                }
-            }
-            BilinearPrecision::Bits8 => {
-                for i in 0..n {
-                    if !alive[i] {
-                        continue;
-                    }
-                    let texel = self.filter::<{ Decode::CACHED }>(
-                        profile.bilinear,
-                        c.point[i] != 0,
-                        c.ilod[i] as usize,
-                        c.cs[i],
-                        c.ct[i],
-                    );
-                    for ch in 0..4 {
-                        local[ch][i] = i32::from(texel[ch]);
-                    }
-                }
+            return;
+        }
+        // `sum(texel * weight) >> 8` per channel, the weights `(16 - u) * (16 - v)`,
+        // `u * (16 - v)`, `(16 - u) * v`, `u * v` (as `sample::blend4`, whose 16-bit lanes
+        // never carry: each channel's sum is below 2^16).
+        let [fu, fv] = &c.frac;
+        for (ch, shift) in [16, 8, 0, 24].into_iter().enumerate() {
+            for i in 0..n {
+                let (u, v) = (fu[i], fv[i]);
+                let t = |k: usize| texels[k][i] >> shift & 0xff;
+                let sum = t(0) * ((16 - u) * (16 - v))
+                    + t(1) * (u * (16 - v))
+                    + t(2) * ((16 - u) * v)
+                    + t(3) * (u * v);
+                local[ch][i] = (sum >> 8) as i32;
             }
         }
     }
 }
 
-/// Lane `i` of `local` from an `0xAARRGGBB` texel, if the lane is live.
+/// The texel indices and bilinear fractions of each lane (as `Tmu::point` and
+/// `Tmu::bilinear`): lane `i` samples LOD `lod_of(ilod[i])` of a texture whose LOD 0 is
+/// `wmask + 1` by `hmask + 1`. A point-sampled lane gets its texel in all four taps and
+/// zero fractions, which the bilinear weights turn into the texel itself; with
+/// `all_point` only the first tap is computed. Written as branch-free loops, one per
+/// case, so that they vectorise.
 #[inline(always)]
-fn unpack(local: &mut ColourLanes, i: usize, live: bool, argb: u32) {
-    if live {
-        local[0][i] = (argb >> 16 & 0xff) as i32;
-        local[1][i] = (argb >> 8 & 0xff) as i32;
-        local[2][i] = (argb & 0xff) as i32;
-        local[3][i] = (argb >> 24) as i32;
-    }
-}
-
-/// One decoded level of the bound texture, looked up once for the lanes that sample it:
-/// point sampling and 4-bit bilinear as `Tmu::point` and `Tmu::bilinear` compute them
-/// from the cache.
-struct LevelAt<'a> {
-    texels: &'a [u32],
-    /// The LOD.
-    lod: u32,
-    /// Width minus 1, height minus 1.
-    smax: i32,
-    tmax: i32,
-    /// `tclamps`, `tclampt`.
+fn taps_lanes(
+    n: usize,
+    c: &mut Chunk,
     clamp: (bool, bool),
+    all_point: bool,
+    lod_of: impl Fn(i32) -> u32,
+    wmask: u32,
+    hmask: u32,
+) {
+    let all_bilinear = c.point[..n].iter().all(|&p| p == 0);
+    let level = |i: usize| {
+        let lod = lod_of(c.ilod[i]) & 15;
+        (lod, (wmask >> lod) as i32, (hmask >> lod) as i32)
+    };
+    if all_point {
+        for i in 0..n {
+            let (lod, smax, tmax) = level(i);
+            c.taps[0][i] = point_tap(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+        }
+        return;
+    }
+    if all_bilinear {
+        for i in 0..n {
+            let (lod, smax, tmax) = level(i);
+            let (taps, fs, ft) = bilinear_taps(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+            for (k, &tap) in taps.iter().enumerate() {
+                c.taps[k][i] = tap;
+            }
+            c.frac[0][i] = fs;
+            c.frac[1][i] = ft;
+        }
+        return;
+    }
+    for i in 0..n {
+        let (lod, smax, tmax) = level(i);
+        let (taps, fs, ft) = bilinear_taps(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+        let point = point_tap(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+        let is_point = c.point[i] != 0;
+        for (k, &tap) in taps.iter().enumerate() {
+            c.taps[k][i] = if is_point { point } else { tap };
+        }
+        c.frac[0][i] = if is_point { 0 } else { fs };
+        c.frac[1][i] = if is_point { 0 } else { ft };
+    }
 }
 
-impl<'a> LevelAt<'a> {
-    #[inline(always)]
-    fn new(tmu: &'a Tmu, lod: usize, clamp: (bool, bool)) -> Self {
-        Self {
-            texels: tmu.cache.level(lod),
-            lod: lod as u32,
-            smax: tmu.layout.smax(lod) as i32,
-            tmax: tmu.layout.tmax(lod) as i32,
-            clamp,
-        }
+/// The texel index of point sampling 24.8 LOD-0 coordinates at `lod`, whose width and
+/// height minus 1 are `max` (as `Tmu::point`).
+#[inline(always)]
+fn point_tap(s: i32, t: i32, lod: u32, (smax, tmax): (i32, i32), clamp: (bool, bool)) -> u32 {
+    let (mut s, mut t) = (s >> (lod + 8), t >> (lod + 8));
+    // `max(0).min(max)`: `clamp` without its panic path (`max` is never negative).
+    if clamp.0 {
+        s = s.max(0).min(smax);
     }
+    if clamp.1 {
+        t = t.max(0).min(tmax);
+    }
+    ((t & tmax) as u32) * (smax as u32 + 1) + (s & smax) as u32
+}
 
-    /// Texel `(s, t)` (in range); a level shorter than its layout (a caller bug, as in
-    /// `TexelCache::texel`) reads 0.
-    #[inline(always)]
-    fn texel(&self, s: u32, t: u32) -> u32 {
-        let i = t.wrapping_mul(self.smax as u32 + 1).wrapping_add(s) as usize;
-        self.texels.get(i).copied().unwrap_or(0)
-    }
+/// The four texel indices and the 4-bit S and T fractions of a bilinear fetch of 24.8
+/// LOD-0 coordinates at `lod` (as `Tmu::bilinear`).
+#[inline(always)]
+fn bilinear_taps(
+    s: i32,
+    t: i32,
+    lod: u32,
+    (smax, tmax): (i32, i32),
+    clamp: (bool, bool),
+) -> ([u32; 4], u32, u32) {
+    let s = (s >> lod).wrapping_sub(0x80);
+    let t = (t >> lod).wrapping_sub(0x80);
+    let (s0, s1) = neighbour_lanes(s >> 8, smax, clamp.0);
+    let (t0, t1) = neighbour_lanes(t >> 8, tmax, clamp.1);
+    let width = smax as u32 + 1;
+    (
+        [
+            t0 * width + s0,
+            t0 * width + s1,
+            t1 * width + s0,
+            t1 * width + s1,
+        ],
+        (s as u32 & 0xff) >> 4,
+        (t as u32 & 0xff) >> 4,
+    )
+}
 
-    /// Point sampling of 24.8 LOD-0 coordinates.
-    #[inline(always)]
-    fn point(&self, s: i32, t: i32) -> u32 {
-        let mut s = s >> (self.lod + 8);
-        let mut t = t >> (self.lod + 8);
-        if self.clamp.0 {
-            s = s.clamp(0, self.smax);
-        }
-        if self.clamp.1 {
-            t = t.clamp(0, self.tmax);
-        }
-        self.texel((s & self.smax) as u32, (t & self.tmax) as u32)
+/// `sample::neighbours` without branches: clamping pins both to 0 below the texture and
+/// both to `max` at or beyond it, which is `c` and `c + 1` each clamped to `0..=max`
+/// (`c + 1` cannot overflow: `c` is a 24.8 coordinate shifted down by 8).
+#[inline(always)]
+fn neighbour_lanes(c: i32, max: i32, clamp: bool) -> (u32, u32) {
+    let (mut c0, mut c1) = (c, c.wrapping_add(1));
+    if clamp {
+        c0 = c0.max(0).min(max);
+        c1 = c1.max(0).min(max);
     }
-
-    /// 4-bit bilinear filtering of 24.8 LOD-0 coordinates (half a texel subtracted here).
-    #[inline(always)]
-    fn bilinear4(&self, s: i32, t: i32) -> u32 {
-        let s = (s >> self.lod).wrapping_sub(0x80);
-        let t = (t >> self.lod).wrapping_sub(0x80);
-        let (s0, s1) = neighbours(s >> 8, self.smax, self.clamp.0);
-        let (t0, t1) = neighbours(t >> 8, self.tmax, self.clamp.1);
-        let c = [
-            self.texel(s0, t0),
-            self.texel(s1, t0),
-            self.texel(s0, t1),
-            self.texel(s1, t1),
-        ];
-        let (u, v) = ((s as u32 & 0xff) >> 4, (t as u32 & 0xff) >> 4);
-        blend4(c, [(16 - u) * (16 - v), u * (16 - v), (16 - u) * v, u * v])
-    }
+    ((c0 & max) as u32, (c1 & max) as u32)
 }
 
 /// `lod[i] = term(w[i])` for the first `n` lanes.

@@ -972,7 +972,7 @@ fn random_state(tmu: &mut Tmu, rng: &mut XorShift) {
 /// of the output are left alone.
 #[test]
 fn span_lanes_match_per_pixel_texels() {
-    let mut rng = XorShift(0x5eed_7e57_1a9e_5u64);
+    let mut rng = XorShift(0x0005_eed7_e571_a9e5);
     for memory in 0..6 {
         let mut tmu = Tmu::new(0, 1 << 20);
         for b in tmu.ram.iter_mut() {
