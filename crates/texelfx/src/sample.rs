@@ -17,8 +17,7 @@
 use crate::format::{self, Decode};
 use crate::lod::{self, f64_to_i32_x86, pixel_lod, PixelLod};
 use crate::{
-    BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodZeroFrac, PerspDivide, TexelModel,
-    Tmu,
+    BilinearPrecision, CoordRounding, FilterSelect, LodZeroFrac, PerspDivide, TexelModel, Tmu,
 };
 use sst1_regs::{TLod, TextureMode};
 
@@ -36,7 +35,6 @@ pub(crate) struct Sample {
 
 impl Tmu {
     /// Fetches the texel for iterated S, T (.32, i.e. 14.18 << 14) and W (.32, 2.30 << 2).
-    /// `span`: `256 / W` and the LOD's W term from [`SpanRecip`] when it holds this pixel.
     pub(crate) fn sample<M: TexelModel>(
         &mut self,
         iters: i64,
@@ -44,7 +42,6 @@ impl Tmu {
         iterw: i64,
         x: i32,
         y: i32,
-        span: Option<(f64, i32)>,
     ) -> Sample {
         let profile = M::texel(&self.profile);
         let mode = TextureMode(self.texture_mode);
@@ -61,7 +58,7 @@ impl Tmu {
             let oow = box86_oow(iterw);
             (box86_divide(iters, oow), box86_divide(itert, oow))
         } else if persp {
-            let recip = span.map_or_else(|| span_recip(iterw), |(r, _)| r);
+            let recip = span_recip(iterw);
             let div = |v: i64| {
                 let q = v as f64 * recip;
                 let i = f64_to_i32_x86(q);
@@ -88,10 +85,7 @@ impl Tmu {
 
         let p = PixelLod {
             base: self.lod_base,
-            persp_term: persp.then(|| match span {
-                Some((_, term)) => term,
-                None => lod::w_term(profile.lod, iterw),
-            }),
+            persp_term: persp.then(|| lod::w_term(profile.lod, iterw)),
             x,
             y,
         };
@@ -276,55 +270,8 @@ impl Tmu {
 /// `256 / W` in double precision, the factor of MAME's perspective divide
 /// ([`PerspDivide::Double`]).
 #[inline(always)]
-fn span_recip(iterw: i64) -> f64 {
+pub(crate) fn span_recip(iterw: i64) -> f64 {
     256.0 / iterw as f64
-}
-
-/// The perspective factors `256 / W` and LOD terms ([`lod::w_term`]) of the pixels of one
-/// span, computed in one loop before the span is shaded: the divides are independent
-/// there and overlap, where one per pixel inside the pixel pipeline stalls it. Values are
-/// exactly those [`Tmu::sample`] would compute itself.
-#[derive(Default)]
-pub(crate) struct SpanRecip {
-    /// Pixel offset from vertex A of the first value.
-    dx0: i32,
-    /// Row offset from vertex A.
-    dy: i32,
-    /// `(256 / W, LOD term)` per pixel from `dx0` on; empty when not computed.
-    values: Vec<(f64, i32)>,
-}
-
-impl SpanRecip {
-    /// Computes the values of `len` pixels from `(dx0, dy)`; `w0` is W (.32) at the first
-    /// pixel and `dwdx` its step; `calc` the LOD computation.
-    pub fn fill(&mut self, calc: LodCalc, (dx0, dy): (i32, i32), len: usize, w0: i64, dwdx: i64) {
-        self.dx0 = dx0;
-        self.dy = dy;
-        self.values.clear();
-        let mut w = w0;
-        self.values.extend((0..len).map(|_| {
-            let r = (span_recip(w), lod::w_term(calc, w));
-            // Wrapping adds give `start + dx * dWdX` mod 2^64, as the per-pixel form.
-            w = w.wrapping_add(dwdx);
-            r
-        }));
-    }
-
-    /// Forgets the span.
-    pub fn clear(&mut self) {
-        self.values.clear();
-    }
-
-    /// The values of pixel `(dx, dy)`, if this span holds it.
-    #[inline(always)]
-    pub fn get(&self, dx: i32, dy: i32) -> Option<(f64, i32)> {
-        if dy != self.dy {
-            return None;
-        }
-        self.values
-            .get(dx.wrapping_sub(self.dx0) as u32 as usize)
-            .copied()
-    }
 }
 
 /// 86Box's 1/W for the perspective divide: `2^48 / W` in unsigned 64-bit integers, with W

@@ -35,7 +35,7 @@ use sst1_regs::{TLod, TextureMode};
 use crate::combine::{self, detail_factor, AddLocal, MSelect, TextureCombine, UnitControl};
 use crate::format::Decode;
 use crate::lod::{self, f64_to_i32_x86, DITHER_4X4};
-use crate::sample::{box86_divide, box86_oow};
+use crate::sample::{box86_divide, box86_oow, span_recip};
 use crate::{
     BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodDither, LodZeroFrac, Output,
     PerspDivide, TexelModel, Tmu, Trilinear,
@@ -611,7 +611,7 @@ fn coords_lanes(
                 }
             };
             for i in 0..n {
-                let recip = 256.0 / w[i] as f64;
+                let recip = span_recip(w[i]);
                 cs[i] = div(s[i], recip);
                 ct[i] = div(t[i], recip);
             }

@@ -696,46 +696,6 @@ fn texel_cache_palette_and_reference_path_agree() {
     assert!(cached.cache.has(5) && !reference.cache.has(5));
 }
 
-/// Perspective factors computed for a whole span ([`Tmu::begin_span`]) give the texels the
-/// per-pixel divide gives, across W crossing zero and with bilinear filtering; pixels
-/// outside the announced span fall back to the per-pixel divide.
-#[test]
-fn span_perspective_factors_match_per_pixel_divide() {
-    let setup = |tmu: &mut Tmu| {
-        tmu.write_reg(addr::START_S, tex(40) as u32);
-        tmu.write_reg(addr::START_T, tex(70) as u32);
-        tmu.write_reg(addr::START_W, (1 << 26) as u32);
-        tmu.write_reg(addr::D_S_DX, tex(3) as u32);
-        tmu.write_reg(addr::D_T_DX, (-tex(1)) as u32);
-        tmu.write_reg(addr::D_W_DX, (-(1 << 22)) as u32);
-        tmu.write_reg(addr::D_S_DY, tex(1) as u32);
-        tmu.write_reg(addr::D_T_DY, tex(2) as u32);
-        tmu.write_reg(addr::D_W_DY, (1 << 21) as u32);
-        tmu.begin_triangle::<R>();
-    };
-    let mut spans = rgb565_8x8(PERSP | BILINEAR);
-    let mut plain = rgb565_8x8(PERSP | BILINEAR);
-    setup(&mut spans);
-    setup(&mut plain);
-    for dy in 0..4 {
-        // W reaches zero near dx = 16 + dy / 2 and turns negative after it.
-        spans.begin_span::<R>(-2, dy, 36);
-        for dx in -4..40 {
-            assert_eq!(
-                spans.texel::<R>(dx, dy, dx, dy, BLACK),
-                plain.texel::<R>(dx, dy, dx, dy, BLACK),
-                "({dx}, {dy})"
-            );
-        }
-    }
-    // W (.32) at (-2, 3): 2^28 - (-2) * 2^24 + 3 * 2^23.
-    let w = f64::from((1 << 28) + (2 << 24) + (3 << 23));
-    let term = crate::lod::w_term(LodCalc::default(), w as i64);
-    assert_eq!(spans.span.get(-2, 3), Some((256.0 / w, term)));
-    assert_eq!(spans.span.get(34, 3), None);
-    assert_eq!(spans.span.get(0, 2), None);
-}
-
 #[test]
 fn box86_divide_arithmetic() {
     use crate::sample::{box86_divide, box86_oow};
