@@ -146,6 +146,28 @@ pub(crate) fn reciplog_in(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) ->
     (if neg { recip.wrapping_neg() } else { recip }, log)
 }
 
+/// The log of [`reciplog_in`] alone, without branches, for the span kernels' lane loops:
+/// the same integer for every value (test `branch_free_reciplog_log`).
+#[inline(always)]
+pub(crate) fn reciplog_log(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) -> i32 {
+    let mag = value.wrapping_abs() as u64;
+    let high = mag & 0xffff_0000_0000 != 0;
+    let temp = if high { (mag >> 16) as u32 } else { mag as u32 };
+    let lz = temp.leading_zeros();
+    let exponent = if high { -16 } else { 0 } + lz as i32;
+    // A zero `temp` (lz = 32) shifts by 0 and stays 0; its log is replaced below.
+    let norm = temp.wrapping_shl(lz);
+    let index = (norm >> 22 & 0x1ff) as usize;
+    let interp = norm >> 14 & 0xff;
+    let rlog = (table[index][1] * (0x100 - interp) + table[index + 1][1] * interp) >> 8;
+    let log = ((exponent + 1) << 8) - ((rlog + (1 << 13)) >> 14) as i32;
+    if temp == 0 {
+        1000 << 8
+    } else {
+        log
+    }
+}
+
 /// Converts a double to i32 as x86 `cvttsd2si` does (truncation; NaN and out-of-range give
 /// `i32::MIN`), which is what the C++ references compiled to.
 #[inline]
@@ -435,6 +457,32 @@ mod tests {
             pixel_lod(LodCalc::Dosbox, LodDither::Off, &p, tl, false),
             0x300 - 0x80
         );
+    }
+
+    #[test]
+    fn branch_free_reciplog_log() {
+        let table = reciplog_table();
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut values = vec![
+            0,
+            1,
+            -1,
+            i64::MIN,
+            i64::MAX,
+            1 << 32,
+            1 << 47,
+            1 << 48,
+            -(1 << 48),
+        ];
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push((x as i64) >> (x % 64));
+        }
+        for v in values {
+            assert_eq!(reciplog_log(table, v), reciplog_dosbox(v).1, "{v:#x}");
+        }
     }
 
     #[test]

@@ -34,8 +34,8 @@ use sst1_regs::{TLod, TextureMode};
 
 use crate::combine::{self, detail_factor, AddLocal, MSelect, TextureCombine, UnitControl};
 use crate::format::Decode;
-use crate::lod::{self, f64_to_i32_x86, DITHER_4X4};
-use crate::sample::{box86_divide, box86_oow, span_recip};
+use crate::lod::{self, DITHER_4X4};
+use crate::sample::{box86_divide, box86_oow};
 use crate::{
     BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodDither, LodZeroFrac, Output,
     PerspDivide, TexelModel, Tmu, Trilinear,
@@ -316,7 +316,7 @@ impl Tmu {
                 LodCalc::Dosbox => {
                     // Source: DOSBox Staging `TEXTURE_PIPELINE` (as `lod::w_term`).
                     let table = lod::reciplog_table();
-                    w_terms(&c.w, n, lod, |w| lod::reciplog_in(table, w).1)
+                    w_terms(&c.w, n, lod, |w| lod::reciplog_log(table, w))
                 }
                 LodCalc::Box86 => w_terms(&c.w, n, lod, |w| lod::w_term(LodCalc::Box86, w)),
             }
@@ -601,17 +601,10 @@ fn coords_lanes(
         }
         (true, PerspDivide::Double) => {
             // MAME: S * (256 / W) in doubles, truncated, or floored (see `Tmu::sample`).
-            let div = |v: i64, recip: f64| {
-                let q = v as f64 * recip;
-                let i = f64_to_i32_x86(q);
-                if floor && (i as f64) > q && i != i32::MIN {
-                    i - 1
-                } else {
-                    i
-                }
-            };
+            let div = |v: i64, recip: f64| f64_to_i32_lanes(i64_to_f64(v) * recip, floor);
             for i in 0..n {
-                let recip = span_recip(w[i]);
+                // `span_recip`, with a conversion that vectorises.
+                let recip = 256.0 / i64_to_f64(w[i]);
                 cs[i] = div(s[i], recip);
                 ct[i] = div(t[i], recip);
             }
@@ -637,6 +630,42 @@ fn coords_lanes(
                 ct[i] = 0;
             }
         }
+    }
+}
+
+/// `v as f64` (rounded to nearest, ties to even) from conversions of 32-bit halves, which
+/// AVX2 has for vectors where it has none from 64 bits: `hi * 2^32` and the unsigned low
+/// half are exact doubles whose sum is `v`, so the one rounding of their addition is that
+/// of the direct conversion.
+#[inline(always)]
+fn i64_to_f64(v: i64) -> f64 {
+    let hi = (v >> 32) as i32;
+    let lo = (v as u32 ^ 0x8000_0000) as i32;
+    f64::from(hi) * 4_294_967_296.0 + (f64::from(lo) + 2_147_483_648.0)
+}
+
+/// `lod::f64_to_i32_x86(q)` (truncation; NaN and out of range give `i32::MIN`), then with
+/// `floor` one less where that went up, as `Tmu::sample` computes it, in arithmetic that
+/// vectorises (Rust's saturating `as` does not): `q` in range is rounded to the nearest
+/// integer by adding and subtracting `1.5 * 2^52` (exact below 2^51), stepped back by one
+/// where that went away from zero (truncation) or up (floor), and read from the low bits
+/// of the same sum. For `q` in range the floor is what truncating and stepping down gives.
+#[inline(always)]
+fn f64_to_i32_lanes(q: f64, floor: bool) -> i32 {
+    const MAGIC: f64 = 6_755_399_441_055_744.0;
+    let in_range = (-2_147_483_648.0..2_147_483_648.0).contains(&q);
+    let nearest = (q + MAGIC) - MAGIC;
+    // Floor, or truncation of a positive value: back down where rounding went up.
+    let step = if floor || q >= 0.0 {
+        f64::from(u8::from(nearest > q))
+    } else {
+        -f64::from(u8::from(nearest < q))
+    };
+    let r = ((nearest - step) + MAGIC).to_bits() as u32 as i32;
+    if in_range {
+        r
+    } else {
+        i32::MIN
     }
 }
 
@@ -707,6 +736,83 @@ fn combine_lanes(
             let v = v.clamp(0, 255) ^ invert;
             if alive[i] {
                 o[i] = v;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{f64_to_i32_lanes, i64_to_f64};
+    use crate::lod::f64_to_i32_x86;
+
+    #[test]
+    fn split_conversion_rounds_as_the_direct_one() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut values = vec![0, 1, -1, i64::MIN, i64::MAX, (1 << 53) + 1, -(1 << 53) - 1];
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push((x as i64) >> (x % 64));
+        }
+        for v in values {
+            assert_eq!(i64_to_f64(v).to_bits(), (v as f64).to_bits(), "{v:#x}");
+        }
+    }
+
+    #[test]
+    fn lane_conversion_truncates_and_floors_as_x86() {
+        let per_pixel = |q: f64, floor: bool| {
+            let i = f64_to_i32_x86(q);
+            if floor && (i as f64) > q && i != i32::MIN {
+                i - 1
+            } else {
+                i
+            }
+        };
+        let mut x = 0x853c_49e6_748f_ea9bu64;
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.5,
+            -2.5,
+            0.999_999,
+            -0.999_999,
+            2_147_483_647.0,
+            2_147_483_647.5,
+            2_147_483_647.999,
+            2_147_483_648.0,
+            -2_147_483_647.5,
+            -2_147_483_648.0,
+            -2_147_483_648.5,
+            -2_147_483_649.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e300,
+            -1e300,
+            4.5e15,
+            -4.5e15,
+        ];
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let scale = f64::from(1u32 << (x % 32) as u32);
+            values.push((x as i64 >> 11) as f64 / (1u64 << 21) as f64 * scale);
+        }
+        for q in values {
+            for floor in [false, true] {
+                assert_eq!(
+                    f64_to_i32_lanes(q, floor),
+                    per_pixel(q, floor),
+                    "{q} {floor}"
+                );
             }
         }
     }
