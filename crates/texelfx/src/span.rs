@@ -9,8 +9,11 @@
 //! 2. texture coordinates: the perspective divide as [`crate::PerspDivide`] says, or the
 //!    shift of affine texturing, and `tclampw`;
 //! 3. LOD per lane (its W term, bias, dither, clamp), integer LOD, point or bilinear;
-//! 4. the levels the live lanes need are decoded into the cache (module `cache`), then
-//!    each live lane is point sampled or filtered from it;
+//! 4. the levels the live lanes need are decoded into the cache (module `cache`); then
+//!    the texel indices and 4-bit bilinear fractions of every lane (a point-sampled lane
+//!    as four equal taps with zero fractions), the gather from the cache, and the
+//!    bilinear blend channel by channel (the Voodoo 2's 8-bit weights, which no model of
+//!    the SST-1 uses, per lane through `Tmu::filter`);
 //! 5. the detail factor and LOD fraction, and the combine unit (module [`crate::combine`])
 //!    channel by channel over the lanes.
 //!
