@@ -6,9 +6,13 @@
 
 use core::marker::PhantomData;
 
+use pixelfx::span::{Lanes, LANES};
 use pixelfx::TexelSource;
 use sst1_regs::Rgba;
-use texelfx::{ChainModel, TexelModel, Tmu};
+use texelfx::{ChainModel, ColourLanes, LaneOutput, TexelModel, Tmu, ZERO_COLOUR};
+
+// The FBI's chunks are the TMUs' lanes.
+const _: () = assert!(LANES == texelfx::LANES);
 
 /// The TMUs taking part in a triangle, upstream last, run by model `M`.
 pub struct Chain<'a, M> {
@@ -50,10 +54,42 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
         }
     }
 
-    #[inline]
-    fn begin_span(&mut self, dx: i32, dy: i32, len: usize) {
-        for t in self.tmus.iter_mut() {
-            t.begin_span::<M>(dx, dy, len);
+    /// The chunk's texels a stage at a time in each TMU ([`Tmu::texels`]), upstream TMU
+    /// first over all lanes, its lanes the next one's `other` lanes: for every live lane
+    /// exactly what [`Chain::texel`] gives, with every model and chain wiring.
+    #[inline(always)]
+    fn texels(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        out: &mut [Lanes; 4],
+    ) {
+        match self.tmus {
+            [] => {
+                for ch in out.iter_mut() {
+                    for (v, &a) in ch[..n.min(LANES)].iter_mut().zip(alive) {
+                        if a {
+                            *v = 0;
+                        }
+                    }
+                }
+            }
+            [t0, rest @ ..] if self.wiring == ChainModel::Box86 => {
+                box86_texels::<M>(t0, rest.first_mut(), (dx0, dy, x0, y), alive, n, out)
+            }
+            [t0, upstream @ ..] => {
+                // Upstream first: the last TMU sees zero, each output feeds the next down.
+                let mut other = &ZERO_COLOUR;
+                for t in upstream.iter_mut().rev() {
+                    other =
+                        t.texels_kept::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other));
+                }
+                t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other), out);
+            }
         }
     }
 }
@@ -83,6 +119,33 @@ fn box86_texel<M: TexelModel>(
         Some(t1) => {
             let other = t1.texel_box86_upstream::<M>(dx, dy, x, y, mode);
             t0.texel::<M>(dx, dy, x, y, other)
+        }
+    }
+}
+
+/// [`box86_texel`] for the live lanes of one chunk: the same choice, once per chunk.
+#[inline(always)]
+fn box86_texels<M: TexelModel>(
+    t0: &mut Tmu,
+    t1: Option<&mut Tmu>,
+    (dx0, dy, x0, y): (i32, i32, i32, i32),
+    alive: &[bool; LANES],
+    n: usize,
+    out: &mut ColourLanes,
+) {
+    let mode = t0.texture_mode();
+    match t1 {
+        None => t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out),
+        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => {
+            t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out)
+        }
+        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => {
+            t1.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out)
+        }
+        Some(t1) => {
+            let upstream = LaneOutput::Box86Upstream(mode);
+            let other = t1.texels_kept::<M>(dx0, dy, x0, y, alive, n, upstream);
+            t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other), out);
         }
     }
 }

@@ -82,6 +82,12 @@ impl TexelCache {
         level.get(i).copied().unwrap_or(0)
     }
 
+    /// The decoded texels of LOD `lod` (empty or stale unless [`TexelCache::has`] it).
+    #[inline(always)]
+    pub fn level(&self, lod: usize) -> &[u32] {
+        &self.levels[lod]
+    }
+
     /// Memory bytes `[addr, addr + len)` (wrapping at `mem_mask + 1`) were written: drops
     /// every level decoded from one of them.
     pub fn written(&mut self, addr: u32, len: u32, mem_mask: u32) {

@@ -29,12 +29,13 @@ mod format;
 mod layout;
 mod lod;
 mod sample;
+mod span;
 
 use cache::TexelCache;
 pub use combine::DetailRule;
 use combine::{detail_factor, Factors, TextureCombine};
 use layout::Layout;
-use sample::SpanRecip;
+pub use span::{ColourLanes, LaneOutput, Lanes, LANES, ZERO_COLOUR};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
 
@@ -448,8 +449,10 @@ pub struct Tmu {
     box86: box86::Box86Cache,
     /// Sample through `cache` (off: decode every texel from memory, the generic path).
     cached: bool,
-    /// Perspective factors of the span being shaded.
-    span: SpanRecip,
+    /// The span kernels' lane values (module `span`), kept between chunks.
+    lanes: Option<Box<span::Chunk>>,
+    /// Lane outputs of [`Tmu::texels_kept`], kept for the next TMU down the chain.
+    kept: Option<Box<ColourLanes>>,
 }
 
 /// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero
@@ -491,7 +494,8 @@ impl Tmu {
             cache: TexelCache::new(),
             box86: Default::default(),
             cached: true,
-            span: SpanRecip::default(),
+            lanes: None,
+            kept: None,
         }
     }
 
@@ -607,24 +611,8 @@ impl Tmu {
         if profile.texture_cache == TextureCacheKey::Box86 {
             self.box86_bind();
         }
-        self.span.clear();
         let g = [self.ddx[0], self.ddy[0], self.ddx[1], self.ddy[1]];
         self.lod_base = lod::lod_base(profile.lod, g, self.t_lod);
-    }
-
-    /// The FBI is about to shade `len` pixels from offset `(dx, dy)` (as in [`Tmu::texel`])
-    /// rightwards: computes their perspective factors in one loop (see `SpanRecip`).
-    /// Optional; texels are the same without it. The generic path
-    /// ([`Tmu::set_generic_path`]) skips it.
-    pub fn begin_span<M: TexelModel>(&mut self, dx: i32, dy: i32, len: usize) {
-        let profile = M::texel(&self.profile);
-        let persp = TextureMode(self.texture_mode).tpersp_st();
-        if !self.cached || !persp || profile.persp_divide != PerspDivide::Double {
-            self.span.clear();
-            return;
-        }
-        let w0 = self.iterated(2, dx, dy);
-        self.span.fill(profile.lod, (dx, dy), len, w0, self.ddx[2]);
     }
 
     /// Subpixel correction of the S/T/W start registers (`fbzColorPath` bit 26):
@@ -684,8 +672,7 @@ impl Tmu {
             self.rebuild_lut();
         }
         let at = |i| self.iterated(i, dx, dy);
-        let span = self.span.get(dx, dy);
-        let smp = self.sample::<M>(at(0), at(1), at(2), x, y, span);
+        let smp = self.sample::<M>(at(0), at(1), at(2), x, y);
         let factors = || Factors {
             detail: detail_factor(self.t_detail, smp.lod, profile.detail),
             lod_fraction: smp.lod_fraction,

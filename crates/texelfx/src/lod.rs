@@ -46,7 +46,8 @@ const LOG2_FRAC_256: [u8; 256] = [
 
 /// The 4x4 ordered-dither matrix, indexed `[y & 3][x & 3]`. Source: MAME and DOSBox
 /// `dither_matrix_4x4` (the same matrix the FBI uses for colour dither).
-const DITHER_4X4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+pub(crate) const DITHER_4X4: [[u8; 4]; 4] =
+    [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
 
 /// log2 of a non-negative value with `frac_bits` fractional bits, as 24.8, from the double's
 /// exponent and its top 7 mantissa bits (MAME `fast_log2`). Negative values give 0.
@@ -77,12 +78,12 @@ fn log2_86box(val: u64) -> i32 {
 }
 
 /// Entries of the reciprocal/log table: 512 steps of the mantissa range 1.0..=2.0.
-const RECIPLOG_STEPS: usize = 512;
+pub(crate) const RECIPLOG_STEPS: usize = 512;
 
 /// The reciprocal/log table DOSBox builds at start-up: for `n = 1 + i / 512`
 /// (`i = 0..=512`), `[2^22 / n, 2^22 * log2 n]`, each truncated to an integer.
 /// Source: DOSBox Staging `voodoo_reciplog` (lookup bits 9, lookup precision 22).
-fn reciplog_table() -> &'static [[u32; 2]; RECIPLOG_STEPS + 1] {
+pub(crate) fn reciplog_table() -> &'static [[u32; 2]; RECIPLOG_STEPS + 1] {
     static TABLE: std::sync::OnceLock<[[u32; 2]; RECIPLOG_STEPS + 1]> = std::sync::OnceLock::new();
     TABLE.get_or_init(|| {
         let mut t = [[0u32; 2]; RECIPLOG_STEPS + 1];
@@ -106,6 +107,13 @@ fn reciplog_table() -> &'static [[u32; 2]; RECIPLOG_STEPS + 1] {
 /// reciprocal and a log of 1000.0.
 #[inline]
 pub(crate) fn reciplog_dosbox(value: i64) -> (i64, i32) {
+    reciplog_in(reciplog_table(), value)
+}
+
+/// [`reciplog_dosbox`] with the table already at hand (the span kernels fetch it once per
+/// chunk).
+#[inline(always)]
+pub(crate) fn reciplog_in(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) -> (i64, i32) {
     let neg = value < 0;
     let mag = value.wrapping_abs() as u64;
     let (mut temp, mut exponent) = if mag & 0xffff_0000_0000 != 0 {
@@ -119,7 +127,6 @@ pub(crate) fn reciplog_dosbox(value: i64) -> (i64, i32) {
     let lz = temp.leading_zeros();
     temp <<= lz;
     exponent += lz as i32;
-    let table = reciplog_table();
     let index = ((temp >> 22) & 0x1ff) as usize;
     let interp = (temp >> 14) & 0xff;
     let (lo, hi) = (table[index], table[index + 1]);
@@ -137,6 +144,28 @@ pub(crate) fn reciplog_dosbox(value: i64) -> (i64, i32) {
     }
     let recip = recip as i64;
     (if neg { recip.wrapping_neg() } else { recip }, log)
+}
+
+/// The log of [`reciplog_in`] alone, without branches, for the span kernels' lane loops:
+/// the same integer for every value (test `branch_free_reciplog_log`).
+#[inline(always)]
+pub(crate) fn reciplog_log(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) -> i32 {
+    let mag = value.wrapping_abs() as u64;
+    let high = mag & 0xffff_0000_0000 != 0;
+    let temp = if high { (mag >> 16) as u32 } else { mag as u32 };
+    let lz = temp.leading_zeros();
+    let exponent = if high { -16 } else { 0 } + lz as i32;
+    // A zero `temp` (lz = 32) shifts by 0 and stays 0; its log is replaced below.
+    let norm = temp.wrapping_shl(lz);
+    let index = (norm >> 22 & 0x1ff) as usize;
+    let interp = norm >> 14 & 0xff;
+    let rlog = (table[index][1] * (0x100 - interp) + table[index + 1][1] * interp) >> 8;
+    let log = ((exponent + 1) << 8) - ((rlog + (1 << 13)) >> 14) as i32;
+    if temp == 0 {
+        1000 << 8
+    } else {
+        log
+    }
 }
 
 /// Converts a double to i32 as x86 `cvttsd2si` does (truncation; NaN and out-of-range give
@@ -428,6 +457,32 @@ mod tests {
             pixel_lod(LodCalc::Dosbox, LodDither::Off, &p, tl, false),
             0x300 - 0x80
         );
+    }
+
+    #[test]
+    fn branch_free_reciplog_log() {
+        let table = reciplog_table();
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut values = vec![
+            0,
+            1,
+            -1,
+            i64::MIN,
+            i64::MAX,
+            1 << 32,
+            1 << 47,
+            1 << 48,
+            -(1 << 48),
+        ];
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push((x as i64) >> (x % 64));
+        }
+        for v in values {
+            assert_eq!(reciplog_log(table, v), reciplog_dosbox(v).1, "{v:#x}");
+        }
     }
 
     #[test]

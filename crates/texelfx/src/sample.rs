@@ -17,8 +17,7 @@
 use crate::format::{self, Decode};
 use crate::lod::{self, f64_to_i32_x86, pixel_lod, PixelLod};
 use crate::{
-    BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodZeroFrac, PerspDivide, TexelModel,
-    Tmu,
+    BilinearPrecision, CoordRounding, FilterSelect, LodZeroFrac, PerspDivide, TexelModel, Tmu,
 };
 use sst1_regs::{TLod, TextureMode};
 
@@ -36,7 +35,6 @@ pub(crate) struct Sample {
 
 impl Tmu {
     /// Fetches the texel for iterated S, T (.32, i.e. 14.18 << 14) and W (.32, 2.30 << 2).
-    /// `span`: `256 / W` and the LOD's W term from [`SpanRecip`] when it holds this pixel.
     pub(crate) fn sample<M: TexelModel>(
         &mut self,
         iters: i64,
@@ -44,7 +42,6 @@ impl Tmu {
         iterw: i64,
         x: i32,
         y: i32,
-        span: Option<(f64, i32)>,
     ) -> Sample {
         let profile = M::texel(&self.profile);
         let mode = TextureMode(self.texture_mode);
@@ -61,7 +58,7 @@ impl Tmu {
             let oow = box86_oow(iterw);
             (box86_divide(iters, oow), box86_divide(itert, oow))
         } else if persp {
-            let recip = span.map_or_else(|| span_recip(iterw), |(r, _)| r);
+            let recip = span_recip(iterw);
             let div = |v: i64| {
                 let q = v as f64 * recip;
                 let i = f64_to_i32_x86(q);
@@ -88,10 +85,7 @@ impl Tmu {
 
         let p = PixelLod {
             base: self.lod_base,
-            persp_term: persp.then(|| match span {
-                Some((_, term)) => term,
-                None => lod::w_term(profile.lod, iterw),
-            }),
+            persp_term: persp.then(|| lod::w_term(profile.lod, iterw)),
             x,
             y,
         };
@@ -173,7 +167,7 @@ impl Tmu {
     /// texels decoded as `D` (a [`Decode`] constant, so that each format gets its own
     /// copy of the loop without a per-texel branch).
     #[inline]
-    fn filter<const D: u8>(
+    pub(crate) fn filter<const D: u8>(
         &self,
         precision: BilinearPrecision,
         point: bool,
@@ -276,55 +270,8 @@ impl Tmu {
 /// `256 / W` in double precision, the factor of MAME's perspective divide
 /// ([`PerspDivide::Double`]).
 #[inline(always)]
-fn span_recip(iterw: i64) -> f64 {
+pub(crate) fn span_recip(iterw: i64) -> f64 {
     256.0 / iterw as f64
-}
-
-/// The perspective factors `256 / W` and LOD terms ([`lod::w_term`]) of the pixels of one
-/// span, computed in one loop before the span is shaded: the divides are independent
-/// there and overlap, where one per pixel inside the pixel pipeline stalls it. Values are
-/// exactly those [`Tmu::sample`] would compute itself.
-#[derive(Default)]
-pub(crate) struct SpanRecip {
-    /// Pixel offset from vertex A of the first value.
-    dx0: i32,
-    /// Row offset from vertex A.
-    dy: i32,
-    /// `(256 / W, LOD term)` per pixel from `dx0` on; empty when not computed.
-    values: Vec<(f64, i32)>,
-}
-
-impl SpanRecip {
-    /// Computes the values of `len` pixels from `(dx0, dy)`; `w0` is W (.32) at the first
-    /// pixel and `dwdx` its step; `calc` the LOD computation.
-    pub fn fill(&mut self, calc: LodCalc, (dx0, dy): (i32, i32), len: usize, w0: i64, dwdx: i64) {
-        self.dx0 = dx0;
-        self.dy = dy;
-        self.values.clear();
-        let mut w = w0;
-        self.values.extend((0..len).map(|_| {
-            let r = (span_recip(w), lod::w_term(calc, w));
-            // Wrapping adds give `start + dx * dWdX` mod 2^64, as the per-pixel form.
-            w = w.wrapping_add(dwdx);
-            r
-        }));
-    }
-
-    /// Forgets the span.
-    pub fn clear(&mut self) {
-        self.values.clear();
-    }
-
-    /// The values of pixel `(dx, dy)`, if this span holds it.
-    #[inline(always)]
-    pub fn get(&self, dx: i32, dy: i32) -> Option<(f64, i32)> {
-        if dy != self.dy {
-            return None;
-        }
-        self.values
-            .get(dx.wrapping_sub(self.dx0) as u32 as usize)
-            .copied()
-    }
 }
 
 /// 86Box's 1/W for the perspective divide: `2^48 / W` in unsigned 64-bit integers, with W
@@ -361,7 +308,7 @@ pub(crate) fn box86_divide(v: i64, oow: i64) -> i32 {
 /// sum to 256. The four channels are spread over 16-bit lanes of a `u64`: each product
 /// and the sum stay below `255 * 256 < 2^16`, so lanes never carry into each other.
 #[inline(always)]
-fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
+pub(crate) fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
     let spread = |v: u32| u64::from(v & 0x00ff_00ff) | u64::from((v >> 8) & 0x00ff_00ff) << 32;
     let mut sum = 0u64;
     for (v, w) in texels.into_iter().zip(weights) {
@@ -375,8 +322,8 @@ fn blend4(texels: [u32; 4], weights: [u32; 4]) -> u32 {
 ///
 /// Clamping pins both to 0 below the texture and both to the last texel at or beyond it
 /// (MAME `fetch_texel`; DOSBox clamps each one, which gives the same pair).
-#[inline]
-fn neighbours(c: i32, max: i32, clamp: bool) -> (u32, u32) {
+#[inline(always)]
+pub(crate) fn neighbours(c: i32, max: i32, clamp: bool) -> (u32, u32) {
     let (mut c0, mut c1) = (c, c.wrapping_add(1));
     if clamp {
         if c0 < 0 {

@@ -696,46 +696,6 @@ fn texel_cache_palette_and_reference_path_agree() {
     assert!(cached.cache.has(5) && !reference.cache.has(5));
 }
 
-/// Perspective factors computed for a whole span ([`Tmu::begin_span`]) give the texels the
-/// per-pixel divide gives, across W crossing zero and with bilinear filtering; pixels
-/// outside the announced span fall back to the per-pixel divide.
-#[test]
-fn span_perspective_factors_match_per_pixel_divide() {
-    let setup = |tmu: &mut Tmu| {
-        tmu.write_reg(addr::START_S, tex(40) as u32);
-        tmu.write_reg(addr::START_T, tex(70) as u32);
-        tmu.write_reg(addr::START_W, (1 << 26) as u32);
-        tmu.write_reg(addr::D_S_DX, tex(3) as u32);
-        tmu.write_reg(addr::D_T_DX, (-tex(1)) as u32);
-        tmu.write_reg(addr::D_W_DX, (-(1 << 22)) as u32);
-        tmu.write_reg(addr::D_S_DY, tex(1) as u32);
-        tmu.write_reg(addr::D_T_DY, tex(2) as u32);
-        tmu.write_reg(addr::D_W_DY, (1 << 21) as u32);
-        tmu.begin_triangle::<R>();
-    };
-    let mut spans = rgb565_8x8(PERSP | BILINEAR);
-    let mut plain = rgb565_8x8(PERSP | BILINEAR);
-    setup(&mut spans);
-    setup(&mut plain);
-    for dy in 0..4 {
-        // W reaches zero near dx = 16 + dy / 2 and turns negative after it.
-        spans.begin_span::<R>(-2, dy, 36);
-        for dx in -4..40 {
-            assert_eq!(
-                spans.texel::<R>(dx, dy, dx, dy, BLACK),
-                plain.texel::<R>(dx, dy, dx, dy, BLACK),
-                "({dx}, {dy})"
-            );
-        }
-    }
-    // W (.32) at (-2, 3): 2^28 - (-2) * 2^24 + 3 * 2^23.
-    let w = f64::from((1 << 28) + (2 << 24) + (3 << 23));
-    let term = crate::lod::w_term(LodCalc::default(), w as i64);
-    assert_eq!(spans.span.get(-2, 3), Some((256.0 / w, term)));
-    assert_eq!(spans.span.get(34, 3), None);
-    assert_eq!(spans.span.get(0, 2), None);
-}
-
 #[test]
 fn box86_divide_arithmetic() {
     use crate::sample::{box86_divide, box86_oow};
@@ -852,4 +812,178 @@ fn hardware_is_every_switch_default() {
         persp_divide: Default::default(),
     };
     assert_eq!(TexelProfile::HARDWARE, d);
+}
+
+/// xorshift64*: a small seeded generator, so that a failure replays.
+struct XorShift(u64);
+
+impl XorShift {
+    fn next(&mut self) -> u64 {
+        let mut x = self.0;
+        x ^= x >> 12;
+        x ^= x << 25;
+        x ^= x >> 27;
+        self.0 = x;
+        x.wrapping_mul(0x2545_f491_4f6c_dd1d)
+    }
+
+    fn u32(&mut self) -> u32 {
+        (self.next() >> 32) as u32
+    }
+
+    /// 0..n.
+    fn below(&mut self, n: u32) -> u32 {
+        (self.next() % u64::from(n)) as u32
+    }
+
+    fn pick<T: Copy, const N: usize>(&mut self, v: [T; N]) -> T {
+        v[self.below(N as u32) as usize]
+    }
+
+    /// A signed value of about `bits` significant bits.
+    fn signed(&mut self, bits: u32) -> i32 {
+        let v = (self.u32() >> (32 - bits.clamp(1, 32))) as i32;
+        if self.below(2) == 0 {
+            v
+        } else {
+            v.wrapping_neg()
+        }
+    }
+}
+
+/// A profile with every switch random.
+fn random_profile(rng: &mut XorShift) -> TexelProfile {
+    TexelProfile {
+        lod: rng.pick([LodCalc::Mame, LodCalc::Dosbox, LodCalc::Box86]),
+        lod_dither: rng.pick([LodDither::Matrix4x4, LodDither::Off]),
+        bilinear: rng.pick([BilinearPrecision::Bits4, BilinearPrecision::Bits8]),
+        a8: rng.pick([A8Expansion::AlphaInRgb, A8Expansion::WhiteRgb]),
+        rgb332_blue: rng.pick([Rgb332Blue::Replicated, Rgb332Blue::DosboxTable]),
+        filter_select: rng.pick([FilterSelect::ByLod, FilterSelect::EitherBit]),
+        detail: rng.pick([
+            DetailRule::WholeLods,
+            DetailRule::WholeLodsCut8,
+            DetailRule::IntegerLod,
+        ]),
+        ncc_q2: rng.pick([NccQ2Write::Q2, NccQ2Write::IntoI2]),
+        chain: ChainModel::Full,
+        texture_cache: rng.pick([TextureCacheKey::Exact, TextureCacheKey::Box86]),
+        ncc_update: rng.pick([NccUpdate::Immediate, NccUpdate::OnTextureRegWrite]),
+        trilinear: rng.pick([Trilinear::Spec, Trilinear::Ignored]),
+        lod_zerofrac: rng.pick([LodZeroFrac::Ignored, LodZeroFrac::Spec]),
+        coord_rounding: rng.pick([CoordRounding::Floor, CoordRounding::TowardZero]),
+        decal_invert: rng.pick([DecalInvert::Ignored, DecalInvert::Applied]),
+        persp_divide: rng.pick([
+            PerspDivide::Double,
+            PerspDivide::DosboxReciprocal,
+            PerspDivide::Box86,
+        ]),
+    }
+}
+
+/// Random texture registers, NCC tables and iterators, for a triangle.
+fn random_state(tmu: &mut Tmu, rng: &mut XorShift) {
+    // Every textureMode bit, the combine fields often Glide's usual ones.
+    let mut mode = rng.u32();
+    if rng.below(4) == 0 {
+        mode = (mode & 0xfff) | DECAL;
+    }
+    tmu.write_reg(addr::TEXTURE_MODE, mode);
+    tmu.write_reg(addr::T_LOD, rng.u32());
+    tmu.write_reg(addr::T_DETAIL, rng.u32());
+    for i in 0..4 {
+        tmu.write_reg(addr::TEX_BASE_ADDR + 4 * i, rng.u32() & 0x7ffff);
+    }
+    for _ in 0..rng.below(8) {
+        let word = rng.below(24);
+        tmu.write_reg(addr::NCC_TABLE0 + 4 * word, rng.u32());
+    }
+    // S, T in 14.18 of various sizes; W near 1.0 or anywhere (through zero too).
+    let sizes = [8, 16, 24, 28, 32];
+    for reg in [addr::START_S, addr::START_T] {
+        let bits = rng.pick(sizes);
+        tmu.write_reg(reg, rng.signed(bits) as u32);
+    }
+    for reg in [addr::D_S_DX, addr::D_T_DX, addr::D_S_DY, addr::D_T_DY] {
+        let bits = rng.pick(sizes);
+        tmu.write_reg(reg, rng.signed(bits) as u32);
+    }
+    let w = if rng.below(3) == 0 {
+        rng.u32() as i32
+    } else {
+        ONE_W / (1 + rng.below(64) as i32) + rng.signed(20)
+    };
+    tmu.write_reg(addr::START_W, w as u32);
+    for reg in [addr::D_W_DX, addr::D_W_DY] {
+        let bits = rng.pick([8, 16, 22, 26, 32]);
+        tmu.write_reg(reg, rng.signed(bits) as u32);
+    }
+    if rng.below(4) == 0 {
+        // The float aliases, with their 32 fraction bits.
+        let f = |rng: &mut XorShift| ((rng.below(2000) as f32 - 1000.0) / 7.0).to_bits();
+        tmu.write_reg(addr::F_START_S, f(rng));
+        tmu.write_reg(addr::F_D_S_DX, f(rng));
+    }
+}
+
+/// The span kernels ([`Tmu::texels`]) give, in every live lane, the texel [`Tmu::texel`]
+/// (or the uncombined and 86Box-upstream forms) gives for that pixel, over random
+/// texture states, profiles, gradients, chunks, live masks and upstream colours; dead lanes
+/// of the output are left alone.
+#[test]
+fn span_lanes_match_per_pixel_texels() {
+    let mut rng = XorShift(0x0005_eed7_e571_a9e5);
+    for memory in 0..6 {
+        let mut tmu = Tmu::new(0, 1 << 20);
+        for b in tmu.ram.iter_mut() {
+            *b = rng.u32() as u8;
+        }
+        for state in 0..60 {
+            tmu.set_profile(random_profile(&mut rng));
+            random_state(&mut tmu, &mut rng);
+            tmu.begin_triangle::<R>();
+            for chunk in 0..6 {
+                let n = 1 + rng.below(LANES as u32) as usize;
+                let dx0 = rng.signed(9);
+                let dy = rng.signed(9);
+                let (x0, y) = (rng.below(1024) as i32, rng.below(1024) as i32);
+                let density = rng.below(4);
+                let alive: [bool; LANES] = core::array::from_fn(|_| rng.below(4) >= density);
+                let other: ColourLanes =
+                    core::array::from_fn(|_| core::array::from_fn(|_| rng.below(256) as i32));
+                let what = match rng.below(4) {
+                    0 => LaneOutput::Texel,
+                    1 => LaneOutput::Box86Upstream(rng.u32()),
+                    _ => LaneOutput::Combined(&other),
+                };
+                let mut out: ColourLanes = [[-1; LANES]; 4];
+                tmu.texels::<R>(dx0, dy, x0, y, &alive, n, what, &mut out);
+                for i in 0..LANES {
+                    let got = [0, 1, 2, 3].map(|c| out[c][i]);
+                    if i >= n || !alive[i] {
+                        assert_eq!(got, [-1; 4], "dead lane {i} written");
+                        continue;
+                    }
+                    let (dx, x) = (dx0 + i as i32, x0 + i as i32);
+                    let want = match what {
+                        LaneOutput::Texel => tmu.texel_uncombined::<R>(dx, dy, x, y),
+                        LaneOutput::Box86Upstream(m) => {
+                            tmu.texel_box86_upstream::<R>(dx, dy, x, y, m)
+                        }
+                        LaneOutput::Combined(o) => {
+                            let o = [0, 1, 2, 3].map(|c| o[c][i] as u8);
+                            tmu.texel::<R>(dx, dy, x, y, rgba(o))
+                        }
+                    };
+                    let want = [want.r, want.g, want.b, want.a].map(i32::from);
+                    assert_eq!(
+                        got, want,
+                        "memory {memory} state {state} chunk {chunk} lane {i}: \
+                         textureMode {:#010x} tLOD {:#010x} tDetail {:#010x} {:?}",
+                        tmu.texture_mode, tmu.t_lod, tmu.t_detail, tmu.profile
+                    );
+                }
+            }
+        }
+    }
 }

@@ -1,0 +1,822 @@
+//! Span kernels of the TMU: the texels of a chunk of up to [`LANES`] pixels of one span,
+//! computed a stage at a time over all of them (structure of arrays), where
+//! [`Tmu::texel`] runs every stage for one pixel.
+//!
+//! Stages, each one loop over the lanes, in the order of [`Tmu::texel`] (module `sample`
+//! for the arithmetic of each):
+//!
+//! 1. S, T, W iteration;
+//! 2. texture coordinates: the perspective divide as [`crate::PerspDivide`] says, or the
+//!    shift of affine texturing, and `tclampw`;
+//! 3. LOD per lane (its W term, bias, dither, clamp), integer LOD, point or bilinear;
+//! 4. the levels the live lanes need are decoded into the cache (module `cache`); then
+//!    the texel indices and 4-bit bilinear fractions of every lane (a point-sampled lane
+//!    as four equal taps with zero fractions), the gather from the cache, and the
+//!    bilinear blend channel by channel (the Voodoo 2's 8-bit weights, which no model of
+//!    the SST-1 uses, per lane through `Tmu::filter`);
+//! 5. the detail factor and LOD fraction, and the combine unit (module [`crate::combine`])
+//!    channel by channel over the lanes.
+//!
+//! Every choice that depends only on the registers and the model (perspective, divide,
+//! LOD arithmetic, clamps, combine selections) is made once per chunk; what depends on the
+//! pixel (its LOD, and so its level, filter and detail factor) is a lane value. No table of
+//! states: every `textureMode` / `tLOD` / `tDetail` combination and every model runs here.
+//!
+//! Bit-identical to [`Tmu::texel`] for every live lane (the test
+//! `span_lanes_match_per_pixel_texels` compares them over random states). Only live lanes
+//! touch state (the decoded-texel cache, the 86Box cache's lent entry); the cache is a
+//! memo of decodes that cannot change during a triangle, so decoding the levels a chunk
+//! needs before its lanes sample gives the texels the per-pixel order does. Dead lanes
+//! compute values that are thrown away, with wrapping arithmetic and checked indexing so
+//! that they cannot panic.
+
+// Each lane loop reads and writes several arrays of one chunk by the lane number.
+#![allow(clippy::needless_range_loop)]
+
+use sst1_regs::{TLod, TextureMode};
+
+use crate::combine::{self, detail_factor, AddLocal, MSelect, TextureCombine, UnitControl};
+use crate::format::Decode;
+use crate::lod::{self, DITHER_4X4};
+use crate::sample::{box86_divide, box86_oow};
+use crate::{
+    BilinearPrecision, CoordRounding, FilterSelect, LodCalc, LodDither, LodZeroFrac, Output,
+    PerspDivide, TexelModel, Tmu, Trilinear,
+};
+
+/// Lanes of one chunk; the FBI's span kernels use the same width (`pixelfx::span::LANES`,
+/// checked where the chain joins the two).
+pub const LANES: usize = 64;
+
+/// One value per lane.
+pub type Lanes = [i32; LANES];
+
+/// R, G, B, A lanes, each 0..=255 where it counts.
+pub type ColourLanes = [Lanes; 4];
+
+/// What [`Tmu::texels`] computes for each lane.
+#[derive(Clone, Copy)]
+pub enum LaneOutput<'a> {
+    /// The combine unit's output with these upstream lanes ([`Tmu::texel`]).
+    Combined(&'a ColourLanes),
+    /// The filtered texel alone ([`Tmu::texel_uncombined`]).
+    Texel,
+    /// 86Box's upstream-TMU combine with the downstream TMU's `textureMode`
+    /// ([`Tmu::texel_box86_upstream`]).
+    Box86Upstream(u32),
+}
+
+/// The per-lane values of one chunk, stage by stage. Kept by the TMU between chunks
+/// (`Tmu::lanes`), so that a chunk does not clear 4 KiB first: lanes a stage does not write
+/// hold values of an earlier chunk, which only dead lanes read.
+pub(crate) struct Chunk {
+    /// Iterated S, T, W (.32).
+    s: [i64; LANES],
+    t: [i64; LANES],
+    w: [i64; LANES],
+    /// Texture coordinates, 24.8 texels of LOD 0.
+    cs: Lanes,
+    ct: Lanes,
+    /// Clamped LOD, 8.8.
+    lod: Lanes,
+    /// Integer LOD sampled (a stored level, at most 8).
+    ilod: Lanes,
+    /// The integer LOD before skipping a level the TMU does not hold is odd (0 or 1).
+    odd: Lanes,
+    /// Point sampling (1) or bilinear (0).
+    point: Lanes,
+    /// The four texel indices of a bilinear fetch (all four the texel when point
+    /// sampled), within the lane's level.
+    taps: [[u32; LANES]; 4],
+    /// The four texels (`0xAARRGGBB`) at `taps`.
+    texels: [[u32; LANES]; 4],
+    /// The 4-bit bilinear fractions in S and T (0 when point sampled).
+    frac: [[u32; LANES]; 2],
+    /// The filtered texels (`c_local`), R, G, B, A.
+    local: ColourLanes,
+    /// Detail factor (0.8), where the combine reads it.
+    detail: Lanes,
+    /// LOD fraction (0.8), where the combine reads it.
+    lod_fraction: Lanes,
+}
+
+impl Chunk {
+    fn new() -> Box<Self> {
+        Box::new(Self {
+            s: [0; LANES],
+            t: [0; LANES],
+            w: [0; LANES],
+            cs: [0; LANES],
+            ct: [0; LANES],
+            lod: [0; LANES],
+            ilod: [0; LANES],
+            odd: [0; LANES],
+            point: [0; LANES],
+            taps: [[0; LANES]; 4],
+            texels: [[0; LANES]; 4],
+            frac: [[0; LANES]; 2],
+            local: [[0; LANES]; 4],
+            detail: [0; LANES],
+            lod_fraction: [0; LANES],
+        })
+    }
+}
+
+/// Zero in every lane.
+static ZERO: Lanes = [0; LANES];
+
+/// Black and transparent in every lane: the `other` lanes of the last TMU of a chain.
+pub static ZERO_COLOUR: ColourLanes = [[0; LANES]; 4];
+
+impl Tmu {
+    /// The TMU's output for the live lanes of one chunk: lane `i` is the pixel at offset
+    /// `(dx0 + i, dy)` from vertex A, screen position `(x0 + i, y)` (as [`Tmu::texel`]
+    /// takes them). For each `i < n` with `alive[i]`, lane `i` of `out` gets what
+    /// [`Tmu::texel`] (or the call `what` names) gives for that pixel, bit for bit; other
+    /// lanes of `out` are left as they are.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn texels<M: TexelModel>(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+        out: &mut ColourLanes,
+    ) {
+        let n = n.min(LANES);
+        if !alive[..n].iter().any(|&a| a) {
+            return;
+        }
+        if !self.cached && self.box86.lent.is_none() {
+            // The generic path decodes from memory for every texel: per pixel.
+            self.texels_per_pixel::<M>(dx0, dy, x0, y, alive, n, what, out);
+            return;
+        }
+        let profile = M::texel(&self.profile);
+        if self.lut_stale {
+            self.rebuild_lut();
+        }
+        let mut c = self.lanes.take().unwrap_or_else(Chunk::new);
+        self.iterate_lanes(dx0, dy, n, &mut c);
+        coords_lanes(
+            TextureMode(self.texture_mode),
+            profile.persp_divide,
+            profile.coord_rounding,
+            n,
+            &mut c,
+        );
+        self.lod_lanes::<M>(x0, y, n, &mut c);
+        self.fetch_lanes::<M>(alive, n, &mut c);
+
+        let zero_frac =
+            profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
+        let trilinear = profile.trilinear == Trilinear::Spec;
+        match what {
+            LaneOutput::Texel => store(alive, n, &c.local, out),
+            LaneOutput::Combined(_) if self.passthrough => store(alive, n, &c.local, out),
+            LaneOutput::Combined(other) => {
+                let uses = |m| self.combine.rgb.mselect == m || self.combine.alpha.mselect == m;
+                if uses(MSelect::DetailFactor) {
+                    for i in 0..n {
+                        c.detail[i] =
+                            i32::from(detail_factor(self.t_detail, c.lod[i], profile.detail));
+                    }
+                }
+                if uses(MSelect::LodFraction) {
+                    for i in 0..n {
+                        c.lod_fraction[i] = c.lod[i] & 0xff;
+                    }
+                }
+                let factors = Factors {
+                    detail: &c.detail,
+                    lod_fraction: if zero_frac { &ZERO } else { &c.lod_fraction },
+                    // The reverse of `reverse_blend` on odd LODs (trilinear).
+                    odd: (trilinear && self.combine.trilinear).then_some(&c.odd),
+                };
+                combine_lanes(&self.combine, &c.local, other, &factors, alive, n, out);
+            }
+            LaneOutput::Box86Upstream(mode) => {
+                let downstream = TextureCombine::from_texture_mode(mode);
+                for i in 0..n {
+                    if !alive[i] {
+                        continue;
+                    }
+                    let f = combine::Factors {
+                        detail: detail_factor(self.t_detail, c.lod[i], profile.detail),
+                        lod_fraction: if zero_frac {
+                            0
+                        } else {
+                            (c.lod[i] & 0xff) as u8
+                        },
+                        odd_lod: trilinear && c.odd[i] != 0,
+                    };
+                    let texel = core::array::from_fn(|ch| c.local[ch][i] as u8);
+                    let v = self.combine.combine_box86_upstream(texel, &f, &downstream);
+                    for ch in 0..4 {
+                        out[ch][i] = i32::from(v[ch]);
+                    }
+                }
+            }
+        }
+        self.lanes = Some(c);
+    }
+
+    /// [`Tmu::texels`] into lanes the TMU keeps, for the next TMU of the chain to read as
+    /// its `other` lanes: the live lanes as [`Tmu::texels`] gives them, the others
+    /// anything in 0..=255.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn texels_kept<M: TexelModel>(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+    ) -> &ColourLanes {
+        let mut kept = self
+            .kept
+            .take()
+            .unwrap_or_else(|| Box::new([[0; LANES]; 4]));
+        self.texels::<M>(dx0, dy, x0, y, alive, n, what, &mut kept);
+        self.kept.insert(kept)
+    }
+
+    /// [`Tmu::texels`] one pixel at a time through [`Tmu::output`].
+    #[allow(clippy::too_many_arguments)]
+    #[cold]
+    fn texels_per_pixel<M: TexelModel>(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+        out: &mut ColourLanes,
+    ) {
+        for i in 0..n {
+            if !alive[i] {
+                continue;
+            }
+            let what = match what {
+                LaneOutput::Combined(o) => Output::Combined(sst1_regs::Rgba {
+                    r: o[0][i] as u8,
+                    g: o[1][i] as u8,
+                    b: o[2][i] as u8,
+                    a: o[3][i] as u8,
+                }),
+                LaneOutput::Texel => Output::Texel,
+                LaneOutput::Box86Upstream(m) => Output::Box86Upstream(m),
+            };
+            let (dx, x) = (dx0.wrapping_add(i as i32), x0.wrapping_add(i as i32));
+            let v = self.output::<M>(dx, dy, x, y, what);
+            out[0][i] = i32::from(v.r);
+            out[1][i] = i32::from(v.g);
+            out[2][i] = i32::from(v.b);
+            out[3][i] = i32::from(v.a);
+        }
+    }
+
+    /// Stage 1: S, T, W of each lane, `start + dx * d/dx + dy * d/dy` mod 2^64 (the first
+    /// lane's value plus `i` steps: the same sum).
+    #[inline(always)]
+    fn iterate_lanes(&self, dx0: i32, dy: i32, n: usize, c: &mut Chunk) {
+        for (k, lanes) in [&mut c.s, &mut c.t, &mut c.w].into_iter().enumerate() {
+            let (v0, d) = (self.iterated(k, dx0, dy), self.ddx[k]);
+            for (i, v) in lanes[..n].iter_mut().enumerate() {
+                *v = v0.wrapping_add((i as i64).wrapping_mul(d));
+            }
+        }
+    }
+
+    /// Stage 3: the LOD of each lane, its level, parity and filter (as [`Tmu::sample`]
+    /// and [`lod::pixel_lod`]).
+    #[inline(always)]
+    fn lod_lanes<M: TexelModel>(&self, x0: i32, y: i32, n: usize, c: &mut Chunk) {
+        let profile = M::texel(&self.profile);
+        let mode = TextureMode(self.texture_mode);
+        let tl = TLod(self.t_lod);
+        let mut base = self.lod_base;
+        // 86Box adds the bias at setup (see `lod::lod_base`).
+        if profile.lod != LodCalc::Box86 {
+            base = base.wrapping_add(tl.lodbias() << 6);
+        }
+        let lo = (tl.lodmin() << 6) as i32;
+        // UNVERIFIED (as `lod::pixel_lod`): lodmax capped at 8.0.
+        let hi = ((tl.lodmax() << 6) as i32).min(0x800);
+        let lod = &mut c.lod;
+        if mode.tpersp_st() {
+            match profile.lod {
+                LodCalc::Mame => w_terms(&c.w, n, lod, |w| lod::w_term(LodCalc::Mame, w)),
+                LodCalc::Dosbox => {
+                    // Source: DOSBox Staging `TEXTURE_PIPELINE` (as `lod::w_term`).
+                    let table = lod::reciplog_table();
+                    w_terms(&c.w, n, lod, |w| lod::reciplog_log(table, w))
+                }
+                LodCalc::Box86 => w_terms(&c.w, n, lod, |w| lod::w_term(LodCalc::Box86, w)),
+            }
+        } else {
+            lod[..n].fill(0);
+        }
+        // Only perspective texturing adds the W term.
+        for v in lod[..n].iter_mut() {
+            *v = v.wrapping_add(base);
+        }
+        if mode.tloddither() && profile.lod_dither == LodDither::Matrix4x4 {
+            // Source: MAME `fetch_texel`, DOSBox `TEXTURE_PIPELINE` (as `lod::pixel_lod`).
+            let row = &DITHER_4X4[(y & 3) as usize];
+            for (i, v) in lod[..n].iter_mut().enumerate() {
+                let x = x0.wrapping_add(i as i32);
+                *v = v.wrapping_add(i32::from(row[(x & 3) as usize]) << 4);
+            }
+        }
+        // A lodmin above lodmax gives lodmin (as `lod::pixel_lod`).
+        for v in lod[..n].iter_mut() {
+            *v = (*v).min(hi).max(lo);
+        }
+        let lodmask = self.layout.lodmask as i32;
+        for i in 0..n {
+            // lod >= 0 after the clamp, so the integer part is 0..=15.
+            let raw = lod[i] >> 8;
+            let skip = !(lodmask >> raw) & 1;
+            // UNVERIFIED (as `Tmu::sample`): an odd-only texture at LOD 8 stays on LOD 8.
+            c.ilod[i] = (raw + skip).min(8);
+            c.odd[i] = raw & 1;
+        }
+        let (mag, min) = (!mode.tmagfilter() as i32, !mode.tminfilter() as i32);
+        match profile.filter_select {
+            FilterSelect::ByLod if mag == min => c.point[..n].fill(mag),
+            FilterSelect::ByLod => {
+                for i in 0..n {
+                    c.point[i] = if lod[i] == lo { mag } else { min };
+                }
+            }
+            FilterSelect::EitherBit => c.point[..n].fill(mag & min),
+        }
+    }
+
+    /// Stage 4: decodes the levels the live lanes sample, then samples each live lane
+    /// (the arithmetic of [`Tmu::sample`]'s filter, with the level looked up once per
+    /// chunk when all live lanes sample one level).
+    #[inline(always)]
+    fn fetch_lanes<M: TexelModel>(&mut self, alive: &[bool; LANES], n: usize, c: &mut Chunk) {
+        let profile = M::texel(&self.profile);
+        let mut needed = 0u32;
+        for i in 0..n {
+            if alive[i] {
+                needed |= 1 << c.ilod[i];
+            }
+        }
+        let mut missing = needed;
+        while missing != 0 {
+            let lod = missing.trailing_zeros() as usize;
+            missing &= missing - 1;
+            if !self.cache.has(lod) {
+                self.decode_level(lod);
+            }
+        }
+        let mode = TextureMode(self.texture_mode);
+        let clamp = (mode.tclamps(), mode.tclampt());
+        if profile.bilinear == BilinearPrecision::Bits8 {
+            // The Voodoo 2's 8-bit weights (no model of the SST-1 uses them): per lane.
+            for i in 0..n {
+                if !alive[i] {
+                    continue;
+                }
+                let texel = self.filter::<{ Decode::CACHED }>(
+                    profile.bilinear,
+                    c.point[i] != 0,
+                    c.ilod[i] as usize,
+                    c.cs[i],
+                    c.ct[i],
+                );
+                for ch in 0..4 {
+                    c.local[ch][i] = i32::from(texel[ch]);
+                }
+            }
+            return;
+        }
+        let one_level = needed.is_power_of_two();
+        let all_point = c.point[..n].iter().all(|&p| p != 0);
+        let (wmask, hmask) = (self.layout.wmask, self.layout.hmask);
+        if one_level {
+            let lod = needed.trailing_zeros();
+            taps_lanes(n, c, clamp, all_point, |_| lod, wmask, hmask);
+        } else {
+            taps_lanes(n, c, clamp, all_point, |i| i as u32, wmask, hmask);
+        }
+        let tap_count = if all_point { 1 } else { 4 };
+        let (taps, texels) = (&c.taps, &mut c.texels);
+        if one_level {
+            let level = self.cache.level(needed.trailing_zeros() as usize);
+            for k in 0..tap_count {
+                for i in 0..n {
+                    texels[k][i] = level.get(taps[k][i] as usize).copied().unwrap_or(0);
+                }
+            }
+        } else {
+            for k in 0..tap_count {
+                for i in 0..n {
+                    let level = self.cache.level(c.ilod[i] as usize);
+                    texels[k][i] = level.get(taps[k][i] as usize).copied().unwrap_or(0);
+                }
+            }
+        }
+        let local = &mut c.local;
+        if all_point {
+            for (ch, shift) in [16, 8, 0, 24].into_iter().enumerate() {
+                for i in 0..n {
+                    local[ch][i] = (texels[0][i] >> shift & 0xff) as i32;
+                }
+            }
+            return;
+        }
+        // `sum(texel * weight) >> 8` per channel, the weights `(16 - u) * (16 - v)`,
+        // `u * (16 - v)`, `(16 - u) * v`, `u * v` (as `sample::blend4`, whose 16-bit lanes
+        // never carry: each channel's sum is below 2^16).
+        let [fu, fv] = &c.frac;
+        for (ch, shift) in [16, 8, 0, 24].into_iter().enumerate() {
+            for i in 0..n {
+                let (u, v) = (fu[i], fv[i]);
+                let t = |k: usize| texels[k][i] >> shift & 0xff;
+                let sum = t(0) * ((16 - u) * (16 - v))
+                    + t(1) * (u * (16 - v))
+                    + t(2) * ((16 - u) * v)
+                    + t(3) * (u * v);
+                local[ch][i] = (sum >> 8) as i32;
+            }
+        }
+    }
+}
+
+/// The texel indices and bilinear fractions of each lane (as `Tmu::point` and
+/// `Tmu::bilinear`): lane `i` samples LOD `lod_of(ilod[i])` of a texture whose LOD 0 is
+/// `wmask + 1` by `hmask + 1`. A point-sampled lane gets its texel in all four taps and
+/// zero fractions, which the bilinear weights turn into the texel itself; with
+/// `all_point` only the first tap is computed. Written as branch-free loops, one per
+/// case, so that they vectorise.
+#[inline(always)]
+fn taps_lanes(
+    n: usize,
+    c: &mut Chunk,
+    clamp: (bool, bool),
+    all_point: bool,
+    lod_of: impl Fn(i32) -> u32,
+    wmask: u32,
+    hmask: u32,
+) {
+    let all_bilinear = c.point[..n].iter().all(|&p| p == 0);
+    let level = |i: usize| {
+        let lod = lod_of(c.ilod[i]) & 15;
+        (lod, (wmask >> lod) as i32, (hmask >> lod) as i32)
+    };
+    if all_point {
+        for i in 0..n {
+            let (lod, smax, tmax) = level(i);
+            c.taps[0][i] = point_tap(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+        }
+        return;
+    }
+    if all_bilinear {
+        for i in 0..n {
+            let (lod, smax, tmax) = level(i);
+            let (taps, fs, ft) = bilinear_taps(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+            for (k, &tap) in taps.iter().enumerate() {
+                c.taps[k][i] = tap;
+            }
+            c.frac[0][i] = fs;
+            c.frac[1][i] = ft;
+        }
+        return;
+    }
+    for i in 0..n {
+        let (lod, smax, tmax) = level(i);
+        let (taps, fs, ft) = bilinear_taps(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+        let point = point_tap(c.cs[i], c.ct[i], lod, (smax, tmax), clamp);
+        let is_point = c.point[i] != 0;
+        for (k, &tap) in taps.iter().enumerate() {
+            c.taps[k][i] = if is_point { point } else { tap };
+        }
+        c.frac[0][i] = if is_point { 0 } else { fs };
+        c.frac[1][i] = if is_point { 0 } else { ft };
+    }
+}
+
+/// The texel index of point sampling 24.8 LOD-0 coordinates at `lod`, whose width and
+/// height minus 1 are `max` (as `Tmu::point`).
+#[inline(always)]
+fn point_tap(s: i32, t: i32, lod: u32, (smax, tmax): (i32, i32), clamp: (bool, bool)) -> u32 {
+    let (mut s, mut t) = (s >> (lod + 8), t >> (lod + 8));
+    // `max(0).min(max)`: `clamp` without its panic path (`max` is never negative).
+    if clamp.0 {
+        s = s.max(0).min(smax);
+    }
+    if clamp.1 {
+        t = t.max(0).min(tmax);
+    }
+    ((t & tmax) as u32) * (smax as u32 + 1) + (s & smax) as u32
+}
+
+/// The four texel indices and the 4-bit S and T fractions of a bilinear fetch of 24.8
+/// LOD-0 coordinates at `lod` (as `Tmu::bilinear`).
+#[inline(always)]
+fn bilinear_taps(
+    s: i32,
+    t: i32,
+    lod: u32,
+    (smax, tmax): (i32, i32),
+    clamp: (bool, bool),
+) -> ([u32; 4], u32, u32) {
+    let s = (s >> lod).wrapping_sub(0x80);
+    let t = (t >> lod).wrapping_sub(0x80);
+    let (s0, s1) = neighbour_lanes(s >> 8, smax, clamp.0);
+    let (t0, t1) = neighbour_lanes(t >> 8, tmax, clamp.1);
+    let width = smax as u32 + 1;
+    (
+        [
+            t0 * width + s0,
+            t0 * width + s1,
+            t1 * width + s0,
+            t1 * width + s1,
+        ],
+        (s as u32 & 0xff) >> 4,
+        (t as u32 & 0xff) >> 4,
+    )
+}
+
+/// `sample::neighbours` without branches: clamping pins both to 0 below the texture and
+/// both to `max` at or beyond it, which is `c` and `c + 1` each clamped to `0..=max`
+/// (`c + 1` cannot overflow: `c` is a 24.8 coordinate shifted down by 8).
+#[inline(always)]
+fn neighbour_lanes(c: i32, max: i32, clamp: bool) -> (u32, u32) {
+    let (mut c0, mut c1) = (c, c.wrapping_add(1));
+    if clamp {
+        c0 = c0.max(0).min(max);
+        c1 = c1.max(0).min(max);
+    }
+    ((c0 & max) as u32, (c1 & max) as u32)
+}
+
+/// `lod[i] = term(w[i])` for the first `n` lanes.
+#[inline(always)]
+fn w_terms(w: &[i64; LANES], n: usize, lod: &mut Lanes, term: impl Fn(i64) -> i32) {
+    for (v, &w) in lod[..n].iter_mut().zip(&w[..n]) {
+        *v = term(w);
+    }
+}
+
+/// Stage 2: the 24.8 texture coordinates of each lane and `tclampw` (as [`Tmu::sample`]).
+#[inline(always)]
+fn coords_lanes(
+    mode: TextureMode,
+    divide: PerspDivide,
+    rounding: CoordRounding,
+    n: usize,
+    c: &mut Chunk,
+) {
+    let floor = rounding == CoordRounding::Floor;
+    let (s, t, w) = (&c.s, &c.t, &c.w);
+    let (cs, ct) = (&mut c.cs, &mut c.ct);
+    match (mode.tpersp_st(), divide) {
+        (true, PerspDivide::DosboxReciprocal) => {
+            let table = lod::reciplog_table();
+            for i in 0..n {
+                // Source: DOSBox Staging `TEXTURE_PIPELINE` (see `Tmu::sample`).
+                let (oow, _) = lod::reciplog_in(table, w[i]);
+                cs[i] = (oow.wrapping_mul(s[i]) >> 29) as i32 >> 10;
+                ct[i] = (oow.wrapping_mul(t[i]) >> 29) as i32 >> 10;
+            }
+        }
+        (true, PerspDivide::Box86) => {
+            for i in 0..n {
+                let oow = box86_oow(w[i]);
+                cs[i] = box86_divide(s[i], oow);
+                ct[i] = box86_divide(t[i], oow);
+            }
+        }
+        (true, PerspDivide::Double) => {
+            // MAME: S * (256 / W) in doubles, truncated, or floored (see `Tmu::sample`).
+            let div = |v: i64, recip: f64| f64_to_i32_lanes(i64_to_f64(v) * recip, floor);
+            for i in 0..n {
+                // `span_recip`, with a conversion that vectorises.
+                let recip = 256.0 / i64_to_f64(w[i]);
+                cs[i] = div(s[i], recip);
+                ct[i] = div(t[i], recip);
+            }
+        }
+        (false, _) if floor => {
+            for i in 0..n {
+                cs[i] = (s[i] >> 24) as i32;
+                ct[i] = (t[i] >> 24) as i32;
+            }
+        }
+        (false, _) => {
+            let to_i32 = |v: i64| i32::try_from(v / (1 << 24)).unwrap_or(i32::MIN);
+            for i in 0..n {
+                cs[i] = to_i32(s[i]);
+                ct[i] = to_i32(t[i]);
+            }
+        }
+    }
+    if mode.tclampw() {
+        for i in 0..n {
+            if w[i] < 0 {
+                cs[i] = 0;
+                ct[i] = 0;
+            }
+        }
+    }
+}
+
+/// `v as f64` (rounded to nearest, ties to even) from conversions of 32-bit halves, which
+/// AVX2 has for vectors where it has none from 64 bits: `hi * 2^32` and the unsigned low
+/// half are exact doubles whose sum is `v`, so the one rounding of their addition is that
+/// of the direct conversion.
+#[inline(always)]
+fn i64_to_f64(v: i64) -> f64 {
+    let hi = (v >> 32) as i32;
+    let lo = (v as u32 ^ 0x8000_0000) as i32;
+    f64::from(hi) * 4_294_967_296.0 + (f64::from(lo) + 2_147_483_648.0)
+}
+
+/// `lod::f64_to_i32_x86(q)` (truncation; NaN and out of range give `i32::MIN`), then with
+/// `floor` one less where that went up, as `Tmu::sample` computes it, in arithmetic that
+/// vectorises (Rust's saturating `as` does not): `q` in range is rounded to the nearest
+/// integer by adding and subtracting `1.5 * 2^52` (exact below 2^51), stepped back by one
+/// where that went away from zero (truncation) or up (floor), and read from the low bits
+/// of the same sum. For `q` in range the floor is what truncating and stepping down gives.
+#[inline(always)]
+fn f64_to_i32_lanes(q: f64, floor: bool) -> i32 {
+    const MAGIC: f64 = 6_755_399_441_055_744.0;
+    let in_range = (-2_147_483_648.0..2_147_483_648.0).contains(&q);
+    let nearest = (q + MAGIC) - MAGIC;
+    // Floor, or truncation of a positive value: back down where rounding went up.
+    let step = if floor || q >= 0.0 {
+        f64::from(u8::from(nearest > q))
+    } else {
+        -f64::from(u8::from(nearest < q))
+    };
+    let r = ((nearest - step) + MAGIC).to_bits() as u32 as i32;
+    if in_range {
+        r
+    } else {
+        i32::MIN
+    }
+}
+
+/// The combine unit's per-pixel inputs besides the colours, per lane.
+struct Factors<'a> {
+    /// Detail factor (0.8).
+    detail: &'a Lanes,
+    /// LOD fraction (0.8).
+    lod_fraction: &'a Lanes,
+    /// With trilinear in force: 1 where the LOD is odd, reversing the blend.
+    odd: Option<&'a Lanes>,
+}
+
+/// Copies the live lanes of `from` into `out`.
+#[inline(always)]
+fn store(alive: &[bool; LANES], n: usize, from: &ColourLanes, out: &mut ColourLanes) {
+    for ch in 0..4 {
+        for i in 0..n {
+            if alive[i] {
+                out[ch][i] = from[ch][i];
+            }
+        }
+    }
+}
+
+/// Stage 5: the combine unit over the lanes, one channel at a time (the arithmetic of
+/// `combine::channel`): `clamp((blend * (factor + 1)) >> 8 + add)`, inverted if asked.
+#[inline(always)]
+fn combine_lanes(
+    tc: &TextureCombine,
+    local: &ColourLanes,
+    other: &ColourLanes,
+    f: &Factors<'_>,
+    alive: &[bool; LANES],
+    n: usize,
+    out: &mut ColourLanes,
+) {
+    for ch in 0..4 {
+        let u: &UnitControl = if ch == 3 { &tc.alpha } else { &tc.rgb };
+        let factor: &Lanes = match u.mselect {
+            MSelect::Zero | MSelect::Reserved => &ZERO,
+            MSelect::CLocal => &local[ch],
+            MSelect::AOther => &other[3],
+            MSelect::ALocal => &local[3],
+            MSelect::DetailFactor => f.detail,
+            MSelect::LodFraction => f.lod_fraction,
+        };
+        let add: &Lanes = match u.add {
+            AddLocal::None => &ZERO,
+            AddLocal::CLocal => &local[ch],
+            AddLocal::ALocal => &local[3],
+        };
+        let keep_other = if u.zero_other { 0 } else { -1 };
+        let sub_local = if u.sub_clocal { -1 } else { 0 };
+        // factor ^ 0xff unless reverse_blend (itself reversed on odd trilinear LODs).
+        let flip = if u.reverse_blend { 0 } else { 0xff };
+        let invert = if u.invert_output { 0xff } else { 0 };
+        let (odd, odd_flip) = match f.odd {
+            Some(odd) => (odd, 0xff),
+            None => (&ZERO, 0),
+        };
+        let (c_other, c_local) = (&other[ch], &local[ch]);
+        let o = &mut out[ch];
+        for i in 0..n {
+            let blend = (c_other[i] & keep_other).wrapping_sub(c_local[i] & sub_local);
+            let fac = factor[i] ^ flip ^ (odd[i].wrapping_neg() & odd_flip);
+            let v = (blend.wrapping_mul(fac.wrapping_add(1)) >> 8).wrapping_add(add[i]);
+            let v = v.clamp(0, 255) ^ invert;
+            if alive[i] {
+                o[i] = v;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{f64_to_i32_lanes, i64_to_f64};
+    use crate::lod::f64_to_i32_x86;
+
+    #[test]
+    fn split_conversion_rounds_as_the_direct_one() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut values = vec![0, 1, -1, i64::MIN, i64::MAX, (1 << 53) + 1, -(1 << 53) - 1];
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            values.push((x as i64) >> (x % 64));
+        }
+        for v in values {
+            assert_eq!(i64_to_f64(v).to_bits(), (v as f64).to_bits(), "{v:#x}");
+        }
+    }
+
+    #[test]
+    fn lane_conversion_truncates_and_floors_as_x86() {
+        let per_pixel = |q: f64, floor: bool| {
+            let i = f64_to_i32_x86(q);
+            if floor && (i as f64) > q && i != i32::MIN {
+                i - 1
+            } else {
+                i
+            }
+        };
+        let mut x = 0x853c_49e6_748f_ea9bu64;
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.5,
+            -2.5,
+            0.999_999,
+            -0.999_999,
+            2_147_483_647.0,
+            2_147_483_647.5,
+            2_147_483_647.999,
+            2_147_483_648.0,
+            -2_147_483_647.5,
+            -2_147_483_648.0,
+            -2_147_483_648.5,
+            -2_147_483_649.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            1e300,
+            -1e300,
+            4.5e15,
+            -4.5e15,
+        ];
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let scale = f64::from(1u32 << (x % 32) as u32);
+            values.push((x as i64 >> 11) as f64 / (1u64 << 21) as f64 * scale);
+        }
+        for q in values {
+            for floor in [false, true] {
+                assert_eq!(
+                    f64_to_i32_lanes(q, floor),
+                    per_pixel(q, floor),
+                    "{q} {floor}"
+                );
+            }
+        }
+    }
+}
