@@ -13,8 +13,9 @@
 //! * [`Custom`]: the profile held at run time (`--profile FILE`), every switch tested
 //!   per pixel. For experiments; slow.
 //!
-//! Every model runs the span kernels (`pixelfx::span`), each instance compiled with its
-//! own switches; `Board::set_generic_path` runs the reference path instead.
+//! The four fixed models run the span kernels (`pixelfx::span`), each instance compiled
+//! with its own switches (the hardware model's a second time with AVX2); the custom
+//! model runs the reference path, as `Board::set_generic_path` makes any model do.
 //!
 //! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
 //! (`with_model!`): the match on the model runs once per bus access, never inside a
@@ -33,7 +34,7 @@ impl<M: PixelModel + TexelModel> ChipModel for M {}
 
 /// Defines a model type whose switches are the constant profile `$profile`.
 macro_rules! fixed_model {
-    ($(#[$doc:meta])* $name:ident = $profile:expr) => {
+    ($(#[$doc:meta])* $name:ident = $profile:expr, avx2 = $avx2:expr) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug, Default)]
         pub struct $name;
@@ -44,6 +45,8 @@ macro_rules! fixed_model {
         }
 
         impl PixelModel for $name {
+            const AVX2: bool = $avx2;
+
             #[inline(always)]
             fn pixel(_runtime: &PixelProfile) -> PixelProfile {
                 Self::PROFILE.pixel
@@ -61,19 +64,23 @@ macro_rules! fixed_model {
 
 fixed_model!(
     /// The hardware model: our reading of the SST-1.
-    Hardware = AccuracyProfile::HARDWARE
+    Hardware = AccuracyProfile::HARDWARE,
+    avx2 = true
 );
 fixed_model!(
     /// MAME as a model.
-    Mame = Reference::Mame.profile()
+    Mame = Reference::Mame.profile(),
+    avx2 = false
 );
 fixed_model!(
     /// DOSBox Staging as a model.
-    DosboxStaging = Reference::DosboxStaging.profile()
+    DosboxStaging = Reference::DosboxStaging.profile(),
+    avx2 = false
 );
 fixed_model!(
     /// 86Box as a model.
-    Box86 = Reference::Box86.profile()
+    Box86 = Reference::Box86.profile(),
+    avx2 = false
 );
 
 /// The model of `--profile FILE`: the profile the chips hold at run time, every switch
@@ -83,6 +90,9 @@ fixed_model!(
 pub struct Custom;
 
 impl PixelModel for Custom {
+    // The reference path only: slow by design, and no copy of the kernels to compile.
+    const SPAN_KERNELS: bool = false;
+
     #[inline(always)]
     fn pixel(runtime: &PixelProfile) -> PixelProfile {
         *runtime

@@ -18,6 +18,15 @@ pub trait PixelModel: 'static {
     /// ([`Fbi::set_profile`]); a model with fixed switches ignores it and returns a
     /// constant, which is what lets the compiler fold the switches.
     fn pixel(runtime: &PixelProfile) -> PixelProfile;
+
+    /// Whether triangles run the span kernels ([`crate::span`]); otherwise the reference
+    /// path, pixel by pixel. Each model that does gets its own copies of the kernels.
+    const SPAN_KERNELS: bool = true;
+
+    /// Whether the span kernels are compiled a second time with AVX2, used where the CPU
+    /// has it. A copy of every kernel more: the hardware model, which programs run, has
+    /// it; the reference models, instruments for judging it, run the baseline copy.
+    const AVX2: bool = false;
 }
 
 /// The run-time-profile model: the profile held at run time, every switch tested per pixel. For

@@ -19,18 +19,13 @@ pub trait TexelSource {
     /// position `(x, y)`.
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba;
 
-    /// A span of `len` pixels from offset `(dx, dy)` rightwards is about to be shaded: a
-    /// source may compute per-pixel values for all of them at once here. Optional; the
-    /// texels must not depend on whether it was called.
-    #[inline]
-    fn begin_span(&mut self, _dx: i32, _dy: i32, _len: usize) {}
-
     /// The texels of the live lanes of one chunk of a span ([`crate::span`]): lane `i`
     /// is the pixel at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`; for each
     /// `i < n` with `alive[i]`, its texel's R, G, B, A go to `out[0..4][i]`. Other lanes
-    /// of `out` are left as they are. Texels are asked for in lane order, exactly those
-    /// [`TexelSource::texel`] would be asked for one at a time, so a source with state
-    /// (a texture cache) sees the same sequence; this default does just that.
+    /// of `out` are left as they are. This default asks [`TexelSource::texel`] for the
+    /// live lanes in order, as the reference path does; an override (the TMU chain's)
+    /// may compute a stage at a time over the lanes, as long as every texel, and any
+    /// state a later texel depends on, is what the default would give.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn texels(
@@ -82,38 +77,11 @@ impl Fbi {
             return;
         };
         let st = DrawState::capture::<M>(self, dest);
-        if self.generic_path {
+        if self.generic_path || !M::SPAN_KERNELS {
             self.walk::<M, T, false>(&st, tex);
         } else {
-            self.walk_spans::<M, T>(&st, tex);
+            self.walk::<M, T, true>(&st, tex);
         }
-    }
-
-    /// The span kernels, compiled for the best vector instructions the CPU has: with AVX2
-    /// where the CPU has it (found at run time), for the baseline target otherwise. Both
-    /// compute the same integers; the choice changes only the speed.
-    fn walk_spans<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe { self.walk_spans_avx2::<M, T>(st, tex) };
-            return;
-        }
-        self.walk::<M, T, true>(st, tex);
-    }
-
-    /// [`Fbi::walk`] with the span kernels, compiled with AVX2 enabled.
-    ///
-    /// # Safety
-    /// The CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn walk_spans_avx2<M: PixelModel, T: TexelSource>(
-        &mut self,
-        st: &DrawState,
-        tex: &mut T,
-    ) {
-        self.walk::<M, T, true>(st, tex);
     }
 
     /// Force the reference path (every mode register read at run time for every pixel)
@@ -236,7 +204,6 @@ impl Fbi {
         let params = self.params;
         let dy = y - ay;
         let mut stipple = st.stipple;
-        tex.begin_span(start - ax, dy, (stop - start) as usize);
         if let Some(c) = copy {
             c.step_row(start, stop, params.right_to_left);
         }
@@ -403,7 +370,7 @@ impl Fbi {
                         params,
                         profile,
                     };
-                    shade_band::<M>(&mut shader, st, band, a, consts);
+                    shade_band_rows::<M>(&mut shader, st, band, a, consts);
                 });
             }
         });
@@ -453,42 +420,8 @@ struct BandRow<'m> {
     aux: &'m mut [u16],
 }
 
-/// Shade a band's rows with the span kernels, compiled with AVX2 where the CPU has it.
-fn shade_band<M: PixelModel>(
-    shader: &mut Shader<'_>,
-    st: &DrawState,
-    band: Vec<BandRow<'_>>,
-    a: (i32, i32),
-    consts: &TriangleConsts,
-) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the CPU has AVX2 (checked just above).
-        unsafe { shade_band_avx2::<M>(shader, st, band, a, consts) };
-        return;
-    }
-    shade_band_rows::<M>(shader, st, band, a, consts);
-}
-
-/// [`shade_band_rows`] compiled with AVX2 enabled.
-///
-/// # Safety
-/// The CPU must have AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn shade_band_avx2<M: PixelModel>(
-    shader: &mut Shader<'_>,
-    st: &DrawState,
-    band: Vec<BandRow<'_>>,
-    a: (i32, i32),
-    consts: &TriangleConsts,
-) {
-    shade_band_rows::<M>(shader, st, band, a, consts);
-}
-
 /// The rows of a band, in order, a chunk at a time (the same chunks as
 /// [`Fbi::shade_row`]; no texel source, no per-triangle stipple copy).
-#[inline(always)]
 fn shade_band_rows<M: PixelModel>(
     shader: &mut Shader<'_>,
     st: &DrawState,

@@ -2,7 +2,7 @@
 //! up to [`LANES`] pixels of a span (structure of arrays), for whatever drawing state a
 //! triangle uses.
 //!
-//! [`crate::pipeline::Fbi::shade`] runs the stages for one pixel and tests every mode
+//! [`Fbi::shade_pixel`] runs the stages for one pixel and tests every mode
 //! bit for every pixel: the reference path. Here the stages are the same, in the same
 //! order, with the same kill reasons and counters, but each stage is a loop over the
 //! chunk's lanes whose mode decisions are taken once per chunk: an input selection
@@ -298,10 +298,88 @@ pub(crate) struct Shader<'a> {
 
 impl Shader<'_> {
     /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `at.n` asks
-    /// ([`chunk_len`]).
+    /// ([`chunk_len`]), compiled for the best vector instructions the CPU has: with AVX2
+    /// where the model asks for it ([`PixelModel::AVX2`]) and the CPU has it (found at
+    /// run time), for the baseline target otherwise. Both compute the same integers.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        at: &ChunkAt,
+        it: &Iterated,
+        stipple_state: &mut u32,
+        copy: Option<&crate::box86::StippleCopy>,
+        tex: &mut T,
+        consts: &TriangleConsts,
+        mem: &mut Memory<'_>,
+        words: (Words, Words),
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if M::AVX2 && std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            unsafe {
+                self.shade_chunk_avx2::<M, T>(
+                    st,
+                    at,
+                    it,
+                    stipple_state,
+                    copy,
+                    tex,
+                    consts,
+                    mem,
+                    words,
+                )
+            };
+            return;
+        }
+        self.shade_chunk_baseline::<M, T>(st, at, it, stipple_state, copy, tex, consts, mem, words);
+    }
+
+    /// [`Shader::shade_chunk_widths`] compiled with AVX2 enabled.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[allow(clippy::too_many_arguments)]
+    #[target_feature(enable = "avx2")]
+    unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        at: &ChunkAt,
+        it: &Iterated,
+        stipple_state: &mut u32,
+        copy: Option<&crate::box86::StippleCopy>,
+        tex: &mut T,
+        consts: &TriangleConsts,
+        mem: &mut Memory<'_>,
+        words: (Words, Words),
+    ) {
+        self.shade_chunk_widths::<M, T>(st, at, it, stipple_state, copy, tex, consts, mem, words);
+    }
+
+    /// [`Shader::shade_chunk_widths`] for the baseline target.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
+    fn shade_chunk_baseline<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        at: &ChunkAt,
+        it: &Iterated,
+        stipple_state: &mut u32,
+        copy: Option<&crate::box86::StippleCopy>,
+        tex: &mut T,
+        consts: &TriangleConsts,
+        mem: &mut Memory<'_>,
+        words: (Words, Words),
+    ) {
+        self.shade_chunk_widths::<M, T>(st, at, it, stipple_state, copy, tex, consts, mem, words);
+    }
+
+    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `at.n` asks.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource>(
+    fn shade_chunk_widths<M: PixelModel, T: TexelSource>(
         &mut self,
         st: &DrawState,
         at: &ChunkAt,
@@ -627,7 +705,7 @@ impl Shader<'_> {
 }
 
 impl Fbi {
-    /// The reference path for one chunk ([`Fbi::shade`] per pixel), for the buffer
+    /// The reference path for one chunk ([`Fbi::shade_pixel`] per pixel), for the buffer
     /// layouts whose lanes alias (see the module documentation).
     #[inline(never)]
     pub(crate) fn shade_chunk_per_pixel<M: PixelModel, T: TexelSource>(

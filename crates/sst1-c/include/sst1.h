@@ -290,11 +290,11 @@ sst1_result sst1_swap_count(const sst1_board *board, uint64_t *count);
 sst1_result sst1_get_time(const sst1_board *board, sst1_time *time);
 
 /* Tells the board that `nanoseconds` of host time passed with no bus access (the
- * guest's CPU was busy elsewhere). Not modelled in this version: the timing model's
- * host clock moves only with bus accesses (1.5 graphics clocks a write, 4.5 a read),
- * so this returns SST1_ERR_UNSUPPORTED and changes nothing. Until it is, a host that
- * waits for the retrace polls status, as a driver does: each read moves the board's
- * time on. */
+ * guest's CPU was busy elsewhere): the board's clock moves on by that many graphics
+ * clocks (rounded down), its engine drains its FIFOs meanwhile, and video timing moves
+ * on, as a trace's `wait` line does (docs/traces.md). Host time is not the board's
+ * work: sst1_get_time's cycles do not grow. Without it, each bus access moves the
+ * host's time on (1.5 graphics clocks a write, 4.5 a read). */
 sst1_result sst1_advance_time(sst1_board *board, uint64_t nanoseconds);
 
 /* Stores in *active whether the vertical retrace is active now (1) or not (0), from

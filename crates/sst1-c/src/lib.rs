@@ -18,9 +18,7 @@
 //!   library, even to destroy the board.
 //!
 //! Not modelled yet, and said so in the header: 16-bit writes (the board has no
-//! one-pixel LFB write), host time between accesses (`sst1_advance_time`; the timing
-//! model's host clock moves only with bus accesses), parallel rendering (the thread
-//! setting is kept, rendering runs on the calling thread).
+//! one-pixel LFB write).
 
 #![allow(clippy::missing_safety_doc)]
 
@@ -796,15 +794,19 @@ pub unsafe extern "C" fn sst1_get_time(board: *const Sst1Board, time: *mut Sst1T
     })
 }
 
-/// `sst1_advance_time`: not modelled yet (the header says why).
+/// `sst1_advance_time`: host time with no bus access, as graphics clocks of the board
+/// (`RegisterBus::host_wait`, what a trace's `wait` line does).
 #[no_mangle]
-pub unsafe extern "C" fn sst1_advance_time(board: *mut Sst1Board, _nanoseconds: u64) -> c_int {
+pub unsafe extern "C" fn sst1_advance_time(board: *mut Sst1Board, nanoseconds: u64) -> c_int {
     guard(|| {
         // SAFETY: the caller's promise.
-        unsafe { handle(board) }?;
-        // `sst1_board::timing` has no entry for host time between accesses: its host
-        // clock moves with each access only.
-        Err(Error::Unsupported)
+        let b = unsafe { handle(board) }?;
+        let mut inner = b.lock();
+        let hz = u128::from(inner.board.timing().clock_hz);
+        let cycles =
+            u64::try_from(u128::from(nanoseconds) * hz / 1_000_000_000).unwrap_or(u64::MAX);
+        inner.board.host_wait(cycles);
+        Ok(())
     })
 }
 
