@@ -1240,7 +1240,7 @@ pub struct GrLfbInfo {
 
 /// `grLfbLock`: the pointer is a host shadow; a read lock fills it from the board,
 /// a write lock sends what the program stored into it when unlocked (see
-/// [`UNWRITTEN16`]).
+/// `UNWRITTEN16`).
 #[no_mangle]
 pub unsafe extern "C" fn grLfbLock(
     ty: u32,

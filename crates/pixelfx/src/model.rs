@@ -15,7 +15,7 @@ use crate::profile::PixelProfile;
 /// A model of the Pixelfx, chosen at compile time (see the module documentation).
 pub trait PixelModel: 'static {
     /// The switches in force. `runtime` is the profile the FBI holds
-    /// ([`Fbi::set_profile`]); a model with fixed switches ignores it and returns a
+    /// ([`crate::Fbi::set_profile`]); a model with fixed switches ignores it and returns a
     /// constant, which is what lets the compiler fold the switches.
     fn pixel(runtime: &PixelProfile) -> PixelProfile;
 

@@ -2,7 +2,7 @@
 //! up to [`LANES`] pixels of a span (structure of arrays), for whatever drawing state a
 //! triangle uses.
 //!
-//! [`Fbi::shade_pixel`] runs the stages for one pixel and tests every mode
+//! `Fbi::shade_pixel` (`crate::pipeline`) runs the stages for one pixel and tests every mode
 //! bit for every pixel: the reference path. Here the stages are the same, in the same
 //! order, with the same kill reasons and counters, but each stage is a loop over the
 //! chunk's lanes whose mode decisions are taken once per chunk: an input selection
@@ -16,7 +16,7 @@
 //! A chunk's lanes are distinct pixels of one row, so reading all their destination
 //! words before writing any gives what the pixel-by-pixel order gives, with one
 //! exception: colour and aux buffers placed so that one lane's colour word is another
-//! lane's aux word (a layout no driver sets, but registers allow). [`Fbi::shade_chunk`]
+//! lane's aux word (a layout no driver sets, but registers allow). `Shader::shade_chunk`
 //! detects that and shades such a chunk pixel by pixel.
 
 use sst1_regs::{

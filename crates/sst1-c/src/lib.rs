@@ -8,7 +8,7 @@
 //! a callback.
 //!
 //! Rules every entry point follows:
-//! * no panic crosses the C boundary: the body runs under `catch_unwind` ([`guard`]) and
+//! * no panic crosses the C boundary: the body runs under `catch_unwind` (`guard`) and
 //!   a panic is returned as `SST1_ERR_INTERNAL`;
 //! * every argument is checked before anything changes, and a bad one is returned as
 //!   its [`Error`] code; enum arguments arrive as integers (a C enum may hold any value)
