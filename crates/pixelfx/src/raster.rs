@@ -9,7 +9,9 @@ use crate::iter::Iterated;
 use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::StippleRotate;
-use crate::span::{chunk_len, ChunkAt, Lanes, Memory, Shader, TriangleConsts, Words, LANES};
+use crate::span::{
+    chunk_len, ChunkAt, ChunkJob, Lanes, Memory, Shader, TriangleConsts, Words, LANES,
+};
 use crate::stats::Stats;
 use crate::{box86, setup};
 
@@ -244,17 +246,17 @@ impl Fbi {
                         params: &self.params,
                         profile: self.profile,
                     };
-                    shader.shade_chunk_of::<M, T>(
+                    shader.shade_chunk_of::<M, T>(ChunkJob {
                         st,
-                        &at,
-                        &it,
-                        &mut stipple,
-                        copy.as_ref(),
+                        at: &at,
+                        it: &it,
+                        stipple_state: &mut stipple,
+                        copy: copy.as_ref(),
                         tex,
                         consts,
-                        &mut Memory::Whole(&mut self.fb.ram),
-                        (dest_words, aux_words),
-                    );
+                        mem: &mut Memory::Whole(&mut self.fb.ram),
+                        words: (dest_words, aux_words),
+                    });
                 }
                 x0 += n as i32;
             }
@@ -452,17 +454,17 @@ fn shade_band_rows<M: PixelModel>(
                 Words::in_row(colour_len, x0, n),
                 Words::in_row(aux_len, x0, n),
             );
-            shader.shade_chunk_of::<M, NoTexture>(
+            shader.shade_chunk_of::<M, NoTexture>(ChunkJob {
                 st,
-                &at,
-                &it,
-                &mut stipple,
-                None,
-                &mut NoTexture,
+                at: &at,
+                it: &it,
+                stipple_state: &mut stipple,
+                copy: None,
+                tex: &mut NoTexture,
                 consts,
-                &mut memory,
+                mem: &mut memory,
                 words,
-            );
+            });
             x0 += n as i32;
         }
     }

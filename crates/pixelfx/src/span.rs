@@ -284,6 +284,25 @@ impl Memory<'_> {
     }
 }
 
+/// One chunk's work for [`Shader::shade_chunk_of`]: where it lies and what it reads and
+/// changes besides the shader's counters.
+pub(crate) struct ChunkJob<'j, 'm, T> {
+    pub st: &'j DrawState,
+    pub at: &'j ChunkAt,
+    /// The iterators at the chunk's first pixel.
+    pub it: &'j Iterated,
+    /// The row's rotating stipple register.
+    pub stipple_state: &'j mut u32,
+    /// 86Box's per-triangle stipple copy, as in the walker.
+    pub copy: Option<&'j crate::box86::StippleCopy>,
+    pub tex: &'j mut T,
+    pub consts: &'j TriangleConsts,
+    pub mem: &'j mut Memory<'m>,
+    /// The lanes' colour and aux words in `mem`; the caller has checked that they do not
+    /// cross ([`Words::crosses`]).
+    pub words: (Words, Words),
+}
+
 /// What the span kernels read and count besides the frame buffer: the FBI's tables and
 /// counters, borrowed from the FBI (or, for a band of the threaded walk, counters of its
 /// own, added up afterwards).
@@ -297,43 +316,22 @@ pub(crate) struct Shader<'a> {
 }
 
 impl Shader<'_> {
-    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `at.n` asks
+    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `job.at.n` asks
     /// ([`chunk_len`]), compiled for the best vector instructions the CPU has: with AVX2
     /// where the model asks for it ([`PixelModel::AVX2`]) and the CPU has it (found at
     /// run time), for the baseline target otherwise. Both compute the same integers.
-    #[allow(clippy::too_many_arguments)]
     #[inline]
     pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource>(
         &mut self,
-        st: &DrawState,
-        at: &ChunkAt,
-        it: &Iterated,
-        stipple_state: &mut u32,
-        copy: Option<&crate::box86::StippleCopy>,
-        tex: &mut T,
-        consts: &TriangleConsts,
-        mem: &mut Memory<'_>,
-        words: (Words, Words),
+        job: ChunkJob<'_, '_, T>,
     ) {
         #[cfg(target_arch = "x86_64")]
         if M::AVX2 && std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe {
-                self.shade_chunk_avx2::<M, T>(
-                    st,
-                    at,
-                    it,
-                    stipple_state,
-                    copy,
-                    tex,
-                    consts,
-                    mem,
-                    words,
-                )
-            };
+            unsafe { self.shade_chunk_avx2::<M, T>(job) };
             return;
         }
-        self.shade_chunk_baseline::<M, T>(st, at, it, stipple_state, copy, tex, consts, mem, words);
+        self.shade_chunk_baseline::<M, T>(job);
     }
 
     /// [`Shader::shade_chunk_widths`] compiled with AVX2 enabled.
@@ -341,102 +339,49 @@ impl Shader<'_> {
     /// # Safety
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
-    #[allow(clippy::too_many_arguments)]
     #[target_feature(enable = "avx2")]
-    unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource>(
-        &mut self,
-        st: &DrawState,
-        at: &ChunkAt,
-        it: &Iterated,
-        stipple_state: &mut u32,
-        copy: Option<&crate::box86::StippleCopy>,
-        tex: &mut T,
-        consts: &TriangleConsts,
-        mem: &mut Memory<'_>,
-        words: (Words, Words),
-    ) {
-        self.shade_chunk_widths::<M, T>(st, at, it, stipple_state, copy, tex, consts, mem, words);
+    unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource>(&mut self, job: ChunkJob<'_, '_, T>) {
+        self.shade_chunk_widths::<M, T>(job);
     }
 
     /// [`Shader::shade_chunk_widths`] for the baseline target.
-    #[allow(clippy::too_many_arguments)]
     #[inline(never)]
-    fn shade_chunk_baseline<M: PixelModel, T: TexelSource>(
-        &mut self,
-        st: &DrawState,
-        at: &ChunkAt,
-        it: &Iterated,
-        stipple_state: &mut u32,
-        copy: Option<&crate::box86::StippleCopy>,
-        tex: &mut T,
-        consts: &TriangleConsts,
-        mem: &mut Memory<'_>,
-        words: (Words, Words),
-    ) {
-        self.shade_chunk_widths::<M, T>(st, at, it, stipple_state, copy, tex, consts, mem, words);
+    fn shade_chunk_baseline<M: PixelModel, T: TexelSource>(&mut self, job: ChunkJob<'_, '_, T>) {
+        self.shade_chunk_widths::<M, T>(job);
     }
 
-    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `at.n` asks.
-    #[allow(clippy::too_many_arguments)]
+    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `job.at.n` asks.
     #[inline(always)]
-    fn shade_chunk_widths<M: PixelModel, T: TexelSource>(
-        &mut self,
-        st: &DrawState,
-        at: &ChunkAt,
-        it: &Iterated,
-        stipple_state: &mut u32,
-        copy: Option<&crate::box86::StippleCopy>,
-        tex: &mut T,
-        consts: &TriangleConsts,
-        mem: &mut Memory<'_>,
-        words: (Words, Words),
-    ) {
-        if at.n > NARROW {
-            self.shade_chunk::<M, T, LANES>(
-                st,
-                at,
-                it,
-                stipple_state,
-                copy,
-                tex,
-                consts.wide(),
-                mem,
-                words,
-            );
+    fn shade_chunk_widths<M: PixelModel, T: TexelSource>(&mut self, job: ChunkJob<'_, '_, T>) {
+        if job.at.n > NARROW {
+            let lanes = job.consts.wide();
+            self.shade_chunk::<M, T, LANES>(job, lanes);
         } else {
-            self.shade_chunk::<M, T, NARROW>(
-                st,
-                at,
-                it,
-                stipple_state,
-                copy,
-                tex,
-                &consts.narrow,
-                mem,
-                words,
-            );
+            let lanes = &job.consts.narrow;
+            self.shade_chunk::<M, T, NARROW>(job, lanes);
         }
     }
 
     /// Shade one chunk of a span: every stage of [`Fbi::shade_pixel`], a stage at a time.
-    /// `it` holds the iterators at the chunk's first pixel; `stipple_state` is the row's
-    /// rotating stipple register and `copy` 86Box's per-triangle stipple copy, as in the
-    /// walker. `dest_words` and `aux_words` locate the lanes in `mem`; the caller has
-    /// checked that they do not cross ([`Words::crosses`]).
-    #[allow(clippy::too_many_arguments)]
+    /// See [`ChunkJob`] for what it is given; `consts` are the
+    /// triangle's constants at this chunk's width.
     #[inline(always)]
     pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource, const L: usize>(
         &mut self,
-        st: &DrawState,
-        at: &ChunkAt,
-        it: &Iterated,
-        stipple_state: &mut u32,
-        copy: Option<&crate::box86::StippleCopy>,
-        tex: &mut T,
+        job: ChunkJob<'_, '_, T>,
         consts: &TriangleLanes<L>,
-        mem: &mut Memory<'_>,
-        (dest_words, aux_words): (Words, Words),
     ) {
+        let ChunkJob {
+            st,
+            at,
+            it,
+            stipple_state,
+            copy,
+            tex,
+            mem,
+            words: (dest_words, aux_words),
+            ..
+        } = job;
         let n = at.n;
         debug_assert!((1..=L).contains(&n) && L <= LANES);
         let mode = st.mode;
