@@ -401,17 +401,17 @@ fn factor_lanes<const L: usize>(
     fifteen: &[i32; L],
     (one, plus): (i32, i32),
 ) -> [i32; L] {
-    use core::array::from_fn;
+    use crate::span::lanes;
     match code {
         BlendFactor::Zero => [0; L],
-        BlendFactor::SrcAlpha => from_fn(|i| sa[i] + plus),
-        BlendFactor::Color => from_fn(|i| other[i] + plus),
-        BlendFactor::DstAlpha => from_fn(|i| da[i] + plus),
+        BlendFactor::SrcAlpha => lanes(|i| sa[i] + plus),
+        BlendFactor::Color => lanes(|i| other[i] + plus),
+        BlendFactor::DstAlpha => lanes(|i| da[i] + plus),
         BlendFactor::One => [one; L],
-        BlendFactor::OneMinusSrcAlpha => from_fn(|i| one - sa[i]),
-        BlendFactor::OneMinusColor => from_fn(|i| one - other[i]),
-        BlendFactor::OneMinusDstAlpha => from_fn(|i| one - da[i]),
-        BlendFactor::SaturateOrColorBeforeFog => from_fn(|i| fifteen[i] + plus),
+        BlendFactor::OneMinusSrcAlpha => lanes(|i| one - sa[i]),
+        BlendFactor::OneMinusColor => lanes(|i| one - other[i]),
+        BlendFactor::OneMinusDstAlpha => lanes(|i| one - da[i]),
+        BlendFactor::SaturateOrColorBeforeFog => lanes(|i| fifteen[i] + plus),
         _ => [0; L], // reserved 8..=14
     }
 }
@@ -427,7 +427,7 @@ pub fn alpha_blend_lanes<const L: usize>(
     profile: BlendProfile,
     out: &mut [[i32; L]; 4],
 ) {
-    use core::array::from_fn;
+    use crate::span::lanes;
     let arith = profile.arithmetic;
     let zero_fill = fbz_mode.enable_dithering()
         && fbz_mode.dither_2x2()
@@ -440,12 +440,12 @@ pub fn alpha_blend_lanes<const L: usize>(
     let p = input.dst_rgb565;
     let rep = |v: i32, shift: i32| if replicate { v | v >> shift } else { v };
     let mut d: [[i32; L]; 3] = [
-        from_fn(|i| rep((p[i] >> 8) & 0xf8, 5)),
-        from_fn(|i| rep((p[i] >> 3) & 0xfc, 6)),
-        from_fn(|i| rep((p[i] << 3) & 0xf8, 5)),
+        lanes(|i| rep((p[i] >> 8) & 0xf8, 5)),
+        lanes(|i| rep((p[i] >> 3) & 0xfc, 6)),
+        lanes(|i| rep((p[i] << 3) & 0xf8, 5)),
     ];
     let planes = fbz_mode.enable_alpha_planes();
-    let da: [i32; L] = from_fn(|i| match (planes, input.has_aux[i]) {
+    let da: [i32; L] = lanes(|i| match (planes, input.has_aux[i]) {
         (true, true) if arith == BlendArithmetic::Exact255 => input.dst_aux[i] & 0xff,
         (true, true) => input.dst_aux[i],
         _ => 0xff,
@@ -477,7 +477,7 @@ pub fn alpha_blend_lanes<const L: usize>(
 
     let s = input.src;
     let sa = &s[3];
-    let saturate: [i32; L] = from_fn(|i| sa[i].min(one - da[i]));
+    let saturate: [i32; L] = lanes(|i| sa[i].min(one - da[i]));
     let src_code = alpha_mode.src_rgb_blend();
     let dst_code = alpha_mode.dst_rgb_blend();
     let saturate_dst = src_code == BlendFactor::SaturateOrColorBeforeFog
@@ -490,19 +490,19 @@ pub fn alpha_blend_lanes<const L: usize>(
         out[c] = match arith {
             // Arithmetic shift: floor, as the references' signed shifts.
             BlendArithmetic::PerProduct | BlendArithmetic::Dosbox => {
-                from_fn(|i| (((sv[i] * fs[i]) >> 8) + ((dc[i] * fd[i]) >> 8)).clamp(0, 255))
+                lanes(|i| (((sv[i] * fs[i]) >> 8) + ((dc[i] * fd[i]) >> 8)).clamp(0, 255))
             }
             BlendArithmetic::Mame => {
-                from_fn(|i| ((sv[i] * fs[i] + dc[i] * fd[i]) >> 8).clamp(0, 255))
+                lanes(|i| ((sv[i] * fs[i] + dc[i] * fd[i]) >> 8).clamp(0, 255))
             }
             BlendArithmetic::Exact255 => {
-                from_fn(|i| (sv[i] * fs[i] / 255 + dc[i] * fd[i] / 255).clamp(0, 255))
+                lanes(|i| (sv[i] * fs[i] / 255 + dc[i] * fd[i] / 255).clamp(0, 255))
             }
         };
     }
     let a_src = alpha_mode.src_alpha_blend() == BlendFactor::One;
     let a_dst = alpha_mode.dst_alpha_blend() == BlendFactor::One;
-    out[3] = from_fn(|i| {
+    out[3] = lanes(|i| {
         let a = if a_src { sa[i] } else { 0 } + if a_dst { da[i] } else { 0 };
         a.clamp(0, 255)
     });

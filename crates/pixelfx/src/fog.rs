@@ -246,7 +246,7 @@ pub fn apply_fog_lanes<const L: usize>(
     profile: FogProfile,
     out: &mut [[i32; L]; 4],
 ) {
-    use core::array::from_fn;
+    use crate::span::lanes;
     let cin = input.color;
     let fog = [fog_color.r as i32, fog_color.g as i32, fog_color.b as i32];
     let add_back = !mode.fog_mult();
@@ -257,7 +257,7 @@ pub fn apply_fog_lanes<const L: usize>(
         for c in 0..3 {
             let (f, base) = (fog[c], &cin[c]);
             out[c] = if add {
-                from_fn(|i| (base[i] + f).clamp(0, 255))
+                lanes(|i| (base[i] + f).clamp(0, 255))
             } else {
                 [f.clamp(0, 255); L]
             };
@@ -268,7 +268,7 @@ pub fn apply_fog_lanes<const L: usize>(
     let factor: [i32; L] = match mode.fog_za() {
         FogZa::FogTable => {
             let biased = profile.table_depth == FogTableDepth::BiasedWfloat;
-            from_fn(|i| {
+            lanes(|i| {
                 let depth = match (biased, input.depth_bias) {
                     (true, Some(bias)) => (input.wfloat[i] + bias as i32).clamp(0, 0xffff) as u16,
                     _ => input.wfloat[i] as u16,
@@ -277,20 +277,20 @@ pub fn apply_fog_lanes<const L: usize>(
             })
         }
         FogZa::IteratedAlpha => match profile.iterated_alpha {
-            FogIteratedAlpha::Clamped => from_fn(|i| input.alpha[i] + 1),
+            FogIteratedAlpha::Clamped => lanes(|i| input.alpha[i] + 1),
             FogIteratedAlpha::MameLowByte => [1; L],
         },
-        FogZa::IteratedZ => from_fn(|i| (input.z[i] >> 8) + 1),
+        FogZa::IteratedZ => lanes(|i| (input.z[i] >> 8) + 1),
         FogZa::IteratedZAndAlpha => match profile.both_sources {
-            FogBothSources::IteratedW => from_fn(|i| pseudo_clamped_w((input.w)(i)) + 1),
-            FogBothSources::IteratedZ => from_fn(|i| (input.z[i] >> 8) + 1),
+            FogBothSources::IteratedW => lanes(|i| pseudo_clamped_w((input.w)(i)) + 1),
+            FogBothSources::IteratedZ => lanes(|i| (input.z[i] >> 8) + 1),
         },
     };
     let clamp_difference = profile.difference == FogDifference::ClampedToByte;
     for c in 0..3 {
         let fc = if mode.fog_add() { 0 } else { fog[c] };
         let base = &cin[c];
-        out[c] = from_fn(|i| {
+        out[c] = lanes(|i| {
             let f = if add_back { fc - base[i] } else { fc };
             // Arithmetic shift: floor, as in all three references.
             let scaled = (f * factor[i]) >> 8;

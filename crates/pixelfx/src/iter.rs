@@ -57,21 +57,23 @@ impl Iterated {
 /// One 12.12 colour iterator to 8 bits with the SST-1 pseudo-clamp.
 #[inline]
 pub fn clamp_colour(v: Fx12_12) -> u8 {
-    match (v >> 12) & 0xfff {
-        0xfff => 0,
-        0x100 => 0xff,
-        c => c as u8,
-    }
+    // Bit masks rather than a `match`, so that a loop over lanes vectorises: 0x100 has
+    // a zero low byte, so or-ing 0xff gives 0xff; 0xfff is cleared.
+    let c = (v >> 12) & 0xfff;
+    let max = -((c == 0x100) as i32);
+    let negative = -((c == 0xfff) as i32);
+    (((c & 0xff) | (max & 0xff)) & !negative) as u8
 }
 
 /// The 20.12 Z iterator to a 16-bit depth value with the SST-1 pseudo-clamp.
 #[inline]
 pub fn clamp_z(z: Fx20_12) -> u16 {
-    match ((z as u32) >> 12) & 0xfffff {
-        0xfffff => 0,
-        0x10000 => 0xffff,
-        v => v as u16,
-    }
+    // Bit masks rather than a `match`, as in `clamp_colour`: 0x10000 has a zero low
+    // half, so or-ing 0xffff gives 0xffff; 0xfffff is cleared.
+    let v = ((z as u32) >> 12) & 0xfffff;
+    let max = ((v == 0x10000) as u32).wrapping_neg();
+    let negative = ((v == 0xfffff) as u32).wrapping_neg();
+    (((v & 0xffff) | (max & 0xffff)) & !negative) as u16
 }
 
 /// How the colour and Z iterators are clamped into 8-bit colours and the 16-bit depth.
@@ -173,6 +175,28 @@ mod tests {
         assert_eq!(clamp_colour(0x100 << 12), 0xff);
         assert_eq!(clamp_colour(0x101 << 12), 0x01);
         assert_eq!(clamp_colour(-2 << 12), 0xfe);
+    }
+
+    #[test]
+    fn pseudo_clamps_are_the_spec_cases_for_every_integer_part() {
+        // The bit-mask forms against the spec's three cases, for every value the
+        // integer bits can take (the fraction bits below them do not matter).
+        for c in 0..0x1000 {
+            let expected = match c {
+                0xfff => 0,
+                0x100 => 0xff,
+                c => c as u8,
+            };
+            assert_eq!(clamp_colour(c << 12 | 0xabc), expected, "colour {c:#x}");
+        }
+        for v in 0..0x10_0000u32 {
+            let expected = match v {
+                0xfffff => 0,
+                0x10000 => 0xffff,
+                v => v as u16,
+            };
+            assert_eq!(clamp_z((v << 12 | 0x123) as i32), expected, "z {v:#x}");
+        }
     }
 
     #[test]

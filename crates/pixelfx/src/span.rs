@@ -214,6 +214,32 @@ pub(crate) fn chunk_len(left: usize) -> usize {
     }
 }
 
+/// A value a lane holds, with the zero an array of lanes starts from.
+pub(crate) trait Lane: Copy {
+    const ZERO: Self;
+}
+
+impl Lane for i32 {
+    const ZERO: Self = 0;
+}
+
+impl Lane for u16 {
+    const ZERO: Self = 0;
+}
+
+/// `[f(0), f(1), ..]`: one value per lane, as a plain loop over the array. Unlike
+/// `core::array::from_fn`, which the compiler may leave as a call (and then compiles
+/// for the baseline target even inside the AVX2 kernels), this is always inlined into
+/// the kernel and vectorised there.
+#[inline(always)]
+pub(crate) fn lanes<T: Lane, const L: usize>(mut f: impl FnMut(usize) -> T) -> [T; L] {
+    let mut out = [T::ZERO; L];
+    for (i, v) in out.iter_mut().enumerate() {
+        *v = f(i);
+    }
+    out
+}
+
 /// Kill the live lanes of `alive` for which `fails` holds, counting each as `kill`.
 #[inline(always)]
 fn kill_where<const L: usize>(
@@ -246,10 +272,25 @@ fn combine_channel<const L: usize>(
     add: &[i32; L],
     xor: i32,
     invert: i32,
+    zero: &[i32; L],
 ) {
-    for i in 0..L {
-        let v = ((other[i] - sub[i]) * ((factor[i] ^ xor) + 1)) >> 8;
-        out[i] = (v + add[i]).clamp(0, 255) ^ invert;
+    let is_zero = |lanes: &[i32; L]| core::ptr::eq(lanes, zero);
+    if is_zero(other) && is_zero(sub) {
+        // Nothing to scale (`GR_COMBINE_FUNCTION_LOCAL` and its kin): the sum alone.
+        for i in 0..L {
+            out[i] = add[i].clamp(0, 255) ^ invert;
+        }
+    } else if is_zero(factor) && xor == 0xff {
+        // A factor of 0 reversed is 256: the difference passes unscaled
+        // (`(d * 256) >> 8 == d`).
+        for i in 0..L {
+            out[i] = (other[i] - sub[i] + add[i]).clamp(0, 255) ^ invert;
+        }
+    } else {
+        for i in 0..L {
+            let v = ((other[i] - sub[i]) * ((factor[i] ^ xor) + 1)) >> 8;
+            out[i] = (v + add[i]).clamp(0, 255) ^ invert;
+        }
     }
 }
 
@@ -412,12 +453,11 @@ impl Shader<'_> {
 
         // --- iterators, depth value and test ---
         let clamp = profile.iterator_clamp;
-        let z16: [i32; L] = core::array::from_fn(|i| {
-            clamp.z(it.z.wrapping_add(p.dzdx.wrapping_mul(i as i32))) as i32
-        });
+        let z16: [i32; L] =
+            lanes(|i| clamp.z(it.z.wrapping_add(p.dzdx.wrapping_mul(i as i32))) as i32);
         let w_at = |i: usize| it.w.wrapping_add(p.dwdx.wrapping_mul(i as i64));
         let wf: [i32; L] = if mode.wbuffer_select() || fog_mode.enable_fog() {
-            core::array::from_fn(|i| wfloat(w_at(i), profile.wfloat) as i32)
+            lanes(|i| wfloat(w_at(i), profile.wfloat) as i32)
         } else {
             *zero
         };
@@ -426,7 +466,7 @@ impl Shader<'_> {
         let depth: [i32; L] = match bias {
             Some(b) => {
                 let b = b as i16 as i32;
-                core::array::from_fn(|i| (unbiased[i] + b).clamp(0, 0xffff))
+                lanes(|i| (unbiased[i] + b).clamp(0, 0xffff))
             }
             None => *unbiased,
         };
@@ -468,14 +508,15 @@ impl Shader<'_> {
         } else {
             &consts.zero_colour
         };
-        let iterated = ColourLanes::<L> {
-            c: core::array::from_fn(|c| {
-                let (s, d) = (it.argb[c], p.dx[c]);
-                core::array::from_fn(|i| {
-                    clamp.colour(s.wrapping_add(d.wrapping_mul(i as i32))) as i32
-                })
-            }),
-        };
+        // Plain loops, not nested closures: a closure the compiler leaves as a call is
+        // compiled for the baseline target, outside the AVX2 kernel.
+        let mut iterated = ColourLanes::<L>::ZERO;
+        for (c, lanes) in iterated.c.iter_mut().enumerate() {
+            let (s, d) = (it.argb[c], p.dx[c]);
+            for (i, v) in lanes.iter_mut().enumerate() {
+                *v = clamp.colour(s.wrapping_add(d.wrapping_mul(i as i32))) as i32;
+            }
+        }
         let (color0, color1) = (&consts.color0, &consts.color1);
         let other_rgb: [&[i32; L]; 3] = match cp.cc_rgbselect() {
             RgbSelect::IteratedRgb => [&iterated.c[0], &iterated.c[1], &iterated.c[2]],
@@ -520,17 +561,17 @@ impl Shader<'_> {
         let local_rgb_store: ColourLanes<L>;
         let local_rgb: [&[i32; L]; 3] = if cp.cc_localselect_override() {
             // Texture alpha bit 7 chooses color0 instead of the iterated colour.
-            local_rgb_store = ColourLanes::<L> {
-                c: core::array::from_fn(|c| {
-                    core::array::from_fn(|i| {
-                        if texel.c[3][i] & 0x80 != 0 {
-                            color0.c[c][i]
-                        } else {
-                            iterated.c[c][i]
-                        }
-                    })
-                }),
-            };
+            let mut store = ColourLanes::<L>::ZERO;
+            for (c, lanes) in store.c.iter_mut().enumerate() {
+                for (i, v) in lanes.iter_mut().enumerate() {
+                    *v = if texel.c[3][i] & 0x80 != 0 {
+                        color0.c[c][i]
+                    } else {
+                        iterated.c[c][i]
+                    };
+                }
+            }
+            local_rgb_store = store;
             [
                 &local_rgb_store.c[0],
                 &local_rgb_store.c[1],
@@ -546,7 +587,7 @@ impl Shader<'_> {
             AlphaLocalSelect::IteratedAlpha => &iterated.c[3],
             AlphaLocalSelect::Color0 => &color0.c[3],
             AlphaLocalSelect::IteratedZ => {
-                z_alpha = core::array::from_fn(|i| match profile.z_alpha {
+                z_alpha = lanes(|i| match profile.z_alpha {
                     ZAlphaByte::High => z16[i] >> 8,
                     ZAlphaByte::Low => z16[i] & 0xff,
                 });
@@ -604,7 +645,7 @@ impl Shader<'_> {
             let (dst_rgb565, _) = load_words(mem.colour(), dest_words);
             let (dst_aux, has_aux) = load_words(mem.aux(), aux_words);
             let dither = self.dither;
-            let dither_value: [i32; L] = core::array::from_fn(|i| {
+            let dither_value: [i32; L] = lanes(|i| {
                 let x = (at.x0 + i as i32) as u32;
                 dither.matrix_value(st.dither_matrix, x, at.prow as u32) as i32
             });
@@ -641,7 +682,7 @@ impl Shader<'_> {
             let planes = mode.enable_alpha_planes();
             let w = aux_words;
             let value = if planes { &out.c[3] } else { &depth };
-            let value: [u16; L] = core::array::from_fn(|i| value[i] as u16);
+            let value: [u16; L] = lanes(|i| value[i] as u16);
             store_alive(mem.aux(), w, &alive, &value);
         }
         let out_count: u32 = alive[..n].iter().map(|a| *a as u32).sum();
@@ -692,7 +733,9 @@ fn store_alive<const L: usize>(ram: &mut [u16], w: Words, alive: &[bool; L], val
     let dst = &mut ram[w.first..w.first + (w.hi - w.lo)];
     let lanes = alive[w.lo..w.hi].iter().zip(&values[w.lo..w.hi]);
     for (d, (a, v)) in dst.iter_mut().zip(lanes) {
-        *d = if *a { *v } else { *d };
+        // A bit mask rather than a choice, so that the loop vectorises.
+        let keep = (*a as u16).wrapping_sub(1);
+        *d = (*v & !keep) | (*d & keep);
     }
 }
 
@@ -761,7 +804,7 @@ fn combine_units<const L: usize>(
             (false, true) => local_a,
             _ => zero,
         };
-        combine_channel(&mut out.c[c], other, sub, factor, add, xor, invert);
+        combine_channel(&mut out.c[c], other, sub, factor, add, xor, invert, zero);
     }
 
     // --- alpha ---
@@ -781,6 +824,6 @@ fn combine_units<const L: usize>(
     } else {
         zero
     };
-    combine_channel(&mut out.c[3], other, sub, factor, add, xor, invert);
+    combine_channel(&mut out.c[3], other, sub, factor, add, xor, invert, zero);
     out
 }

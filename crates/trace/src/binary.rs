@@ -517,7 +517,31 @@ impl<R: std::io::Read> BinaryReader<R> {
 impl<R: std::io::Read> Iterator for BinaryReader<R> {
     type Item = Result<TraceOp, BinaryError>;
 
+    #[inline]
     fn next(&mut self) -> Option<Self::Item> {
+        // Most records are writes: one whose bytes are all in the buffer is decoded here,
+        // small enough to inline into the replay loop; the rest (and every error) take
+        // `record`.
+        if !self.done && !self.frame_due {
+            if let Some((addr, value)) = self.input.peek_write() {
+                if check_addr(addr).is_ok() {
+                    self.input.at += WRITE_RECORD_LEN;
+                    self.pos += WRITE_RECORD_LEN as u64;
+                    self.accessed = true;
+                    self.frame_due = crate::replay::is_swap(addr);
+                    self.ops += 1;
+                    return Some(Ok(TraceOp::Write { addr, value }));
+                }
+            }
+        }
+        self.next_record()
+    }
+}
+
+impl<R: std::io::Read> BinaryReader<R> {
+    /// [`Iterator::next`] through [`BinaryReader::record`].
+    #[inline(never)]
+    fn next_record(&mut self) -> Option<Result<TraceOp, BinaryError>> {
         if self.done {
             return None;
         }
@@ -552,9 +576,30 @@ struct Buffered<R> {
     len: usize,
 }
 
+/// Bytes of a write record: the tag, the address and the value.
+const WRITE_RECORD_LEN: usize = 9;
+
 impl<R: std::io::Read> Buffered<R> {
     /// The buffer's size.
     const SIZE: usize = 64 << 10;
+
+    /// The address and value of the write record at the front of the buffer, if that
+    /// is where the next record is and all its bytes are buffered (nothing is consumed).
+    #[inline(always)]
+    fn peek_write(&self) -> Option<(u32, u32)> {
+        let end = self.at + WRITE_RECORD_LEN;
+        if end > self.len {
+            return None;
+        }
+        let b = self.buf.get(self.at..end)?;
+        let [tag, a0, a1, a2, a3, v0, v1, v2, v3] = *<&[u8; WRITE_RECORD_LEN]>::try_from(b).ok()?;
+        (tag == TAG_WRITE).then(|| {
+            (
+                u32::from_le_bytes([a0, a1, a2, a3]),
+                u32::from_le_bytes([v0, v1, v2, v3]),
+            )
+        })
+    }
 
     fn new(input: R) -> Self {
         Self {

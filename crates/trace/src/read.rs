@@ -140,6 +140,7 @@ fn binary_error(file: &str, compressed: bool, source: BinaryError) -> LoadError 
 impl Iterator for TraceReader<'_> {
     type Item = Result<TraceOp, LoadError>;
 
+    #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         if self.done {
             return None;
@@ -188,6 +189,7 @@ impl TraceStream<'_> {
 impl Iterator for TraceStream<'_> {
     type Item = Result<TraceOp, LoadError>;
 
+    #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         if let Some(op) = self.ahead.pop_front() {
             return Some(Ok(op));

@@ -39,6 +39,7 @@ fn fbi_register(addr: u32) -> Option<u32> {
 }
 
 /// Whether a write at `addr` is a `swapbufferCMD` that reaches the FBI.
+#[inline]
 pub(crate) fn is_swap(addr: u32) -> bool {
     fbi_register(addr) == Some(addr::SWAPBUFFER_CMD)
 }
@@ -189,6 +190,7 @@ pub enum ReplayError {
 }
 
 /// Runs one op on `board`; a `dump` op returns the buffer it saves.
+#[inline]
 fn step(board: &mut Board, op: &TraceOp) -> Option<Dump> {
     match op {
         TraceOp::Config { .. } => {}
