@@ -46,11 +46,39 @@ impl EdgeRounding {
     #[inline]
     pub fn round(self, v: f32) -> i32 {
         let base = match self {
-            EdgeRounding::FloorHalfDown | EdgeRounding::Box86Fixed => v.floor(),
-            EdgeRounding::TruncHalfDown => v.trunc(),
+            EdgeRounding::FloorHalfDown | EdgeRounding::Box86Fixed => floor(v),
+            EdgeRounding::TruncHalfDown => trunc(v),
         };
         // Saturating float->int conversion: hostile coordinates never overflow.
         base as i32 + i32::from(v - base > 0.5)
+    }
+}
+
+/// Below this magnitude an `f32` may have a fraction; at and above it (and for
+/// infinities and NaN) a value is its own floor and truncation.
+const F32_FRACTION_LIMIT: f32 = 8_388_608.0; // 2^23
+
+/// `v.trunc()` without the libm call the baseline target makes of it (rounding runs
+/// three times per triangle). Where `v` may have a fraction it is below 2^23, so the
+/// conversion through `i32` is exact; only the sign of a zero result may differ from
+/// `f32::trunc`, which [`EdgeRounding::round`] cannot see.
+#[inline(always)]
+fn trunc(v: f32) -> f32 {
+    if v.abs() < F32_FRACTION_LIMIT {
+        v as i32 as f32
+    } else {
+        v
+    }
+}
+
+/// `v.floor()` as [`trunc`] computes `v.trunc()`.
+#[inline(always)]
+fn floor(v: f32) -> f32 {
+    let t = trunc(v);
+    if t > v {
+        t - 1.0
+    } else {
+        t
     }
 }
 
@@ -137,6 +165,60 @@ fn spans_float(p: &TriangleParams, rounding: EdgeRounding) -> impl Iterator<Item
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rounding_without_libm_equals_rounding_with_it() {
+        let reference = |rounding: EdgeRounding, v: f32| {
+            let base = match rounding {
+                EdgeRounding::TruncHalfDown => v.trunc(),
+                _ => v.floor(),
+            };
+            base as i32 + i32::from(v - base > 0.5)
+        };
+        // Every value that matters for 12.4 coordinates and their slopes, the edges of
+        // the fast range, and bit patterns spread over every exponent (NaN, infinities).
+        let mut values: Vec<f32> = (-70_000..70_000).map(|i| i as f32 / 16.0).collect();
+        for e in [
+            8_388_607.5f32,
+            8_388_608.0,
+            8_388_609.0,
+            16_777_217.0,
+            0.5,
+            0.49999997,
+        ] {
+            values.extend([
+                e,
+                -e,
+                f32::from_bits(e.to_bits() + 1),
+                -f32::from_bits(e.to_bits() - 1),
+            ]);
+        }
+        values.extend([
+            0.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            f32::MIN,
+            f32::MAX,
+        ]);
+        let mut bits = 0x1234_5678u32;
+        for _ in 0..200_000 {
+            bits ^= bits << 13;
+            bits ^= bits >> 17;
+            bits ^= bits << 5;
+            values.push(f32::from_bits(bits));
+        }
+        for rounding in [EdgeRounding::FloorHalfDown, EdgeRounding::TruncHalfDown] {
+            for &v in &values {
+                assert_eq!(
+                    rounding.round(v),
+                    reference(rounding, v),
+                    "{rounding:?} {v:e}"
+                );
+            }
+        }
+    }
 
     fn tri(a: (f32, f32), b: (f32, f32), c: (f32, f32)) -> TriangleParams {
         let f = |v: f32| (v * 16.0) as i16;
