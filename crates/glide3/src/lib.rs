@@ -154,10 +154,13 @@ impl Glide {
         g
     }
 
-    /// `grGlideShutdown`: close the window and give the bus back. 3dfx's library
-    /// writes nothing after the last swap here in the glide-sdk captures.
+    /// `grGlideShutdown`: close the window and give the bus back. An open context is
+    /// closed as `grSstWinClose` closes it, close sequence and all: 3dfx's SST-1
+    /// `grGlideShutdown` (glide3x/sst1/glide3/src/gglide.c) calls `grSstWinClose` for
+    /// every board before `initClose`. (The glide-sdk captures end where
+    /// `grGlideShutdown` is entered, so they show none of it.)
     pub fn shutdown(mut self) -> Box<dyn RegisterBus> {
-        self.open = false;
+        self.win_close();
         self.hw.into_bus()
     }
 

@@ -97,3 +97,23 @@ fn a_refused_reopen_reinitialises_once() {
         theirs[OPEN + CLOSE + reinit..OPEN + CLOSE + REOPEN]
     );
 }
+
+/// `grGlideShutdown` with a window open closes it first, as 3dfx's SST-1 library does
+/// (its `grGlideShutdown` calls `grSstWinClose` for every board): the same 27 writes
+/// of test30's close, ending with the idle; with no window open it writes nothing.
+#[test]
+fn shutdown_closes_an_open_window() {
+    let (rec, g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
+    let theirs = trace("test30");
+    drop(g.shutdown());
+    let ours = rec.0.borrow();
+    assert_eq!(ours.len(), OPEN + CLOSE, "shutdown length");
+    assert_prefix(&ours, &theirs, "test30 close at shutdown");
+    assert_eq!(ours.last(), Some(&Op::W(0x120, 0)));
+
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
+    assert!(g.win_close());
+    let closed = rec.0.borrow().len();
+    drop(g.shutdown());
+    assert_eq!(rec.0.borrow().len(), closed, "shutdown after close");
+}
