@@ -325,9 +325,58 @@ pub fn parse_number_u64(word: &str) -> Option<u64> {
     u64::from_str_radix(digits, radix).ok()
 }
 
+/// The value of up to eight hex digits, `None` for anything else (no digits, more than
+/// eight, a byte that is not a hex digit).
+#[inline]
+fn hex_u32(digits: &[u8]) -> Option<u32> {
+    if digits.is_empty() || digits.len() > 8 {
+        return None;
+    }
+    let mut v = 0u32;
+    for &b in digits {
+        let d = match b {
+            b'0'..=b'9' => b - b'0',
+            b'a'..=b'f' => b - b'a' + 10,
+            b'A'..=b'F' => b - b'A' + 10,
+            _ => return None,
+        };
+        v = v << 4 | u32::from(d);
+    }
+    Some(v)
+}
+
+/// A write line exactly as the recorder writes it, `w 0xADDR 0xVALUE` (single spaces,
+/// lower-case `0x`, at most eight digits each, nothing else), decoded without the word
+/// splitting and UTF-8 checks of the general parser: most lines of a trace are such
+/// writes. `None` for any other line, which the general parser then reads (and which
+/// gives the same op or the error). The address must pass [`check_addr`].
+#[inline]
+fn canonical_write(raw: &[u8]) -> Option<(u32, u32)> {
+    let rest = raw.strip_prefix(b"w 0x")?;
+    let space = rest.iter().position(|&b| b == b' ')?;
+    let addr = hex_u32(&rest[..space])?;
+    let value = hex_u32(rest[space + 1..].strip_prefix(b"0x")?)?;
+    check_addr(addr).ok()?;
+    Some((addr, value))
+}
+
 /// Parses line `number` of `file` (without its `\n`): `None` for a blank or comment line.
 /// `accessed` says whether a `w` or `r` came before, and is set by one.
 fn parse_line(
+    file: &str,
+    number: usize,
+    raw: &[u8],
+    accessed: &mut bool,
+) -> Result<Option<TraceOp>, ParseError> {
+    if let Some((addr, value)) = canonical_write(raw) {
+        *accessed = true;
+        return Ok(Some(TraceOp::Write { addr, value }));
+    }
+    parse_line_general(file, number, raw, accessed)
+}
+
+/// [`parse_line`] for every line, word by word.
+fn parse_line_general(
     file: &str,
     number: usize,
     raw: &[u8],
@@ -438,4 +487,50 @@ pub fn write_text(trace: &Trace) -> String {
         let _ = writeln!(out, "{}", format_op(op));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn canonical_writes_parse_as_the_general_parser_does() {
+        let lines: &[&[u8]] = &[
+            b"w 0x000120 0x00000000",
+            b"w 0x400000 0xdeadBEEF",
+            b"w 0xfffffc 0xffffffff",
+            b"w 0x0 0x0",
+            b"w 0x1000000 0x1",
+            b"w 0x000122 0x1",
+            b"w 0x000120 0x123456789",
+            b"w 0x0000000120 0x1",
+            b"w 0x120 0x",
+            b"w 0x 0x5",
+            b"w 0x120  0x5",
+            b"w 0x120 0x5 ",
+            b"w 0x120 0x5\r",
+            b"w 0x120 0x5 # comment",
+            b"w 0x120 5",
+            b"w 0X120 0x5",
+            b"w 0x12g 0x5",
+            b"w 0x120 0x5 0x6",
+            b"w 0x120 0x+5",
+        ];
+        for raw in lines {
+            let mut fast_accessed = false;
+            let fast = parse_line("t", 1, raw, &mut fast_accessed);
+            let mut general_accessed = false;
+            let general = parse_line_general("t", 1, raw, &mut general_accessed);
+            assert_eq!(fast, general, "{}", String::from_utf8_lossy(raw));
+            assert_eq!(fast_accessed, general_accessed);
+            if let Some((addr, value)) = canonical_write(raw) {
+                assert_eq!(general, Ok(Some(TraceOp::Write { addr, value })));
+            }
+        }
+        assert_eq!(
+            canonical_write(b"w 0x000120 0x0000abcd"),
+            Some((0x120, 0xabcd))
+        );
+        assert_eq!(canonical_write(b"w 0x000122 0x1"), None);
+    }
 }
