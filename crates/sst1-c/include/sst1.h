@@ -41,7 +41,7 @@ extern "C" {
 
 /* The version of this interface that sst1_api_version() returns. It grows by one when
  * a function or a field is added; existing ones keep their meaning. */
-#define SST1_API_VERSION 1
+#define SST1_API_VERSION 2
 
 /* Size of the memory aperture in bytes (16 MiB). Valid offsets are below it. */
 #define SST1_APERTURE_SIZE 0x1000000u
@@ -79,7 +79,13 @@ typedef enum sst1_result {
      * says what); nothing changed. */
     SST1_ERR_UNSUPPORTED = 8,
     /* A bug in the library (an internal panic, caught). */
-    SST1_ERR_INTERNAL = 9
+    SST1_ERR_INTERNAL = 9,
+    /* sst1_load_state: not a save state, or a damaged, cut-short or forged one. */
+    SST1_ERR_BAD_STATE = 10,
+    /* sst1_load_state: a state in a newer format than this library reads. */
+    SST1_ERR_STATE_VERSION = 11,
+    /* sst1_load_state: a state of a board with another configuration or model. */
+    SST1_ERR_STATE_MISMATCH = 12
 } sst1_result;
 
 /* The model the chips run. Where the reference emulators disagree about what the
@@ -302,6 +308,30 @@ sst1_result sst1_advance_time(sst1_board *board, uint64_t nanoseconds);
  * `status` (its bit 6 reads 0 during the retrace), and moves the host's time on as a
  * read does. */
 sst1_result sst1_vertical_retrace(sst1_board *board, int *active);
+
+/* ------------------------------------------------------------------------------ */
+/* Save states (API version 2)                                                      */
+
+/* Saves the whole board -- registers, FIFOs and timing, frame buffer, texture memory,
+ * NCC tables, palette, fog table, counters, PCI configuration -- into `buffer` as a
+ * versioned byte string (docs/save-states.md), and stores its length in *length. With
+ * `buffer` NULL it only stores the length (the size query; a 4 MiB board with one
+ * 4 MiB TMU takes about 8 MiB). SST1_ERR_NULL if `length` is NULL,
+ * SST1_ERR_BUFFER_TOO_SMALL (with *length set, nothing copied) if `capacity` is less
+ * than the length. The render-thread setting and the swap callback are not part of
+ * the state. */
+sst1_result sst1_save_state(const sst1_board *board, void *buffer, size_t capacity,
+                            size_t *length);
+
+/* Replaces the board's state with the save state in the `length` bytes at `state`,
+ * from sst1_save_state (or `voodoo replay --save-at`) on a board of the same
+ * configuration and model; the board then goes on exactly as the saved one would
+ * have. The render threads and the swap callback stay as they are, and the restored
+ * swap count is not reported to the callback. Refused, with the board unchanged:
+ * SST1_ERR_NULL if `state` is NULL, SST1_ERR_STATE_VERSION for a newer format,
+ * SST1_ERR_STATE_MISMATCH for another configuration or model (sst1_set_model first),
+ * SST1_ERR_BAD_STATE for anything that is not an intact state. */
+sst1_result sst1_load_state(sst1_board *board, const void *state, size_t length);
 
 #ifdef __cplusplus
 }
