@@ -20,6 +20,7 @@ pub mod reference;
 pub mod state;
 pub mod timing;
 mod video;
+mod write16;
 
 use serde::{Deserialize, Serialize};
 

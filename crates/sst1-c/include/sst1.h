@@ -208,11 +208,17 @@ sst1_result sst1_get_render_threads(const sst1_board *board, uint32_t *threads);
  * swapbufferCMD calls the swap callback before returning. */
 sst1_result sst1_write32(sst1_board *board, uint32_t offset, uint32_t value);
 
-/* A 16-bit write at aperture `offset` (a multiple of 2). Not modelled in this version:
- * after the checks of sst1_write32, every 16-bit write returns SST1_ERR_UNSUPPORTED and
- * changes nothing. In the register and texture regions the SST-1 takes 32-bit writes
- * only (UNVERIFIED; 86Box drops 16-bit writes there); in the LFB a 16-bit write stores
- * one pixel, which needs a one-pixel LFB write that the board does not have yet. */
+/* A 16-bit write at aperture `offset` (a multiple of 2). In the LFB it is the half of
+ * a 32-bit LFB write that bit 1 of `offset` selects, and changes only what that half
+ * carries: in the 16-bit formats (lfbMode 0-2, 15) one pixel, its neighbour in the
+ * 32-bit word left as it is; lfbMode's word swap and byte swizzle move the half with
+ * the data (with word swap, a write at offset + 2 stores the first pixel of the
+ * pair). In the 32-bit formats a write of the low half stores the pixel (formats 4,
+ * 5) or its colour (12-14), one of the high half only the depth of 12-14 (API
+ * version 2; version 1 refused every 16-bit write). The SST-1 takes only 32-bit
+ * writes in the register and texture regions (spec sections 4 and 9; 86Box drops
+ * 16-bit writes there): such a write returns SST1_ERR_UNSUPPORTED and changes
+ * nothing. */
 sst1_result sst1_write16(sst1_board *board, uint32_t offset, uint16_t value);
 
 /* A 32-bit read at aperture `offset` (a multiple of 4), stored in *value. Register

@@ -17,8 +17,8 @@
 //!   released and after the last use of the handle, so it may call back into the
 //!   library, even to destroy the board.
 //!
-//! Not modelled yet, and said so in the header: 16-bit writes (the board has no
-//! one-pixel LFB write).
+//! 16-bit writes reach the LFB (one pixel of a 16-bit format); in the register and
+//! texture regions, which the SST-1 takes 32 bits wide only, they are refused.
 
 #![allow(clippy::missing_safety_doc)]
 
@@ -32,6 +32,10 @@ use std::sync::{Mutex, MutexGuard, PoisonError};
 pub const API_VERSION: u32 = 2;
 /// `SST1_APERTURE_SIZE`: the 16 MiB memory aperture.
 pub const APERTURE_SIZE: u32 = 0x100_0000;
+/// `SST1_LFB_BASE`: start of the LFB region.
+const LFB_BASE: u32 = 0x40_0000;
+/// `SST1_TEXTURE_BASE`: start of the texture region.
+const TEXTURE_BASE: u32 = 0x80_0000;
 /// `SST1_PCI_CONFIG_SIZE`: PCI configuration space.
 pub const PCI_CONFIG_SIZE: u32 = 0x100;
 /// `SST1_MAX_RENDER_THREADS`.
@@ -344,10 +348,15 @@ fn read16(board: &Sst1Board, offset: u32) -> Result<u16> {
     })
 }
 
-/// A 16-bit write, checked; not modelled (see the header).
-fn write16(_board: &mut Board, offset: u32, _value: u16) -> Result<()> {
+/// A 16-bit write, checked: into the LFB (`Board::write16`); refused in the register
+/// and texture regions, which the SST-1 takes 32 bits wide only (spec 4, 9).
+fn write16(board: &mut Board, offset: u32, value: u16) -> Result<()> {
     check_aperture(offset, 2)?;
-    Err(Error::Unsupported)
+    if !(LFB_BASE..TEXTURE_BASE).contains(&offset) {
+        return Err(Error::Unsupported);
+    }
+    board.write16(offset, value);
+    Ok(())
 }
 
 /// Copies buffer `which` into the caller's `len` values at `pixels` with `convert`
