@@ -19,6 +19,9 @@ pub enum Diagnostic {
     MissingTmu,
     /// A PCI configuration write the board does not model.
     UnmodelledPci,
+    /// A 16-bit write to a register or to texture memory, which take 32-bit writes
+    /// only (spec 4, 9; ignored).
+    NarrowWrite,
 }
 
 /// Counts per [`Diagnostic`] category.

@@ -17,8 +17,10 @@ mod diagnostics;
 pub mod model;
 pub mod presets;
 pub mod reference;
+pub mod state;
 pub mod timing;
 mod video;
+mod write16;
 
 use serde::{Deserialize, Serialize};
 
@@ -27,6 +29,7 @@ pub use diagnostics::{Diagnostic, Diagnostics};
 pub use model::Model;
 pub use pixelfx::{PathCounts, PixelProfile, Stats};
 pub use reference::{vote, Reference};
+pub use state::{StateError, StateInfo};
 pub use texelfx::{TexelProfile, Tmu};
 pub use timing::{Frame, FrameTime, Timing};
 

@@ -39,7 +39,7 @@
 
 use std::collections::VecDeque;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::video::{Dac, VideoRegs};
 
@@ -91,7 +91,7 @@ const REBASE_AT: u64 = 1 << 60;
 const REBASE_KEEP_FRAMES: u64 = 257;
 
 /// Where one frame's (or the whole replay's) modelled time went, in graphics clocks.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct FrameTime {
     /// Total cycles.
     pub cycles: u64,
@@ -133,25 +133,25 @@ pub struct Timing {
     pub frames: Vec<FrameTime>,
     /// The frame being drawn (since the last swap).
     #[serde(skip)]
-    current: FrameTime,
+    pub(crate) current: FrameTime,
     /// Bus time (1/16 clock) of the writes since the last command.
     #[serde(skip)]
-    pending_bus: u64,
+    pub(crate) pending_bus: u64,
     /// Host time (1/16 clock, trace `wait` lines) since the last command.
     #[serde(skip)]
-    pending_wait: u64,
+    pub(crate) pending_wait: u64,
     /// Sub-clock remainder carried between commands (1/16 clock).
     #[serde(skip)]
-    fraction: u64,
+    pub(crate) fraction: u64,
     /// The board's clock (1/16 clock) at the last synchronised swap.
     #[serde(skip)]
-    last_swap: u64,
+    pub(crate) last_swap: u64,
     /// What the host sees: the status register from the same costs, played out in time.
     #[serde(skip)]
-    host: HostView,
+    pub(crate) host: HostView,
     /// The video frame the retrace follows (from the video registers and the DAC).
     #[serde(skip)]
-    frame: Frame,
+    pub(crate) frame: Frame,
 }
 
 /// The board as the host's bus accesses see it in time (1/16 clock since power-on, moved
@@ -159,32 +159,32 @@ pub struct Timing {
 /// engine, and when the engine is done. It answers the status register (spec 5.1), so the
 /// same trace reads the same values on every run. A write waits while the PCI FIFO is
 /// full (with the memory FIFO on: while both are).
-#[derive(Clone, Debug, Default)]
-struct HostView {
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub(crate) struct HostView {
     /// The host's time: every access moves it on.
-    now: u64,
+    pub(crate) now: u64,
     /// When the engine has finished every command taken so far.
-    engine_free: u64,
+    pub(crate) engine_free: u64,
     /// When the TMUs have finished (the last textured triangle).
-    tmu_free: u64,
+    pub(crate) tmu_free: u64,
     /// When each write still queued is taken, oldest first: at most 64 in the PCI FIFO,
     /// and as many as the memory FIFO holds in front of them.
-    fifo: VecDeque<u64>,
+    pub(crate) fifo: VecDeque<u64>,
     /// How many of the oldest queued writes are in the memory FIFO.
-    in_memory: usize,
+    pub(crate) in_memory: usize,
     /// The memory FIFO's size and low water mark (size 0: disabled).
-    memory_fifo: MemoryFifo,
+    pub(crate) memory_fifo: MemoryFifo,
     /// When each swap still pending happens (at most one per queued write).
-    swaps: VecDeque<u64>,
+    pub(crate) swaps: VecDeque<u64>,
     /// When the last write was taken.
-    last_taken: u64,
+    pub(crate) last_taken: u64,
     /// When the last synchronised swap happened.
-    last_swap: u64,
+    pub(crate) last_swap: u64,
 }
 
 /// The memory FIFO (spec 3, 5.42, 5.46): off-screen frame-buffer rows that queue the
 /// host's writes behind the PCI FIFO.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct MemoryFifo {
     /// Entries it holds; 0 when disabled.
     pub entries: usize,

@@ -50,16 +50,16 @@ const DAC_READ: u32 = 1 << 11;
 
 /// The DAC's PLL registers as the trace programs them: `(M, N/P)` byte pairs for the
 /// clock registers 0x0-0xb, one byte for the control register 0xe.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub(crate) struct Dac {
     /// The PLL write address (auto-incremented).
-    address: usize,
+    pub(crate) address: usize,
     /// The first byte of a pair, once written.
-    first: Option<u8>,
+    pub(crate) first: Option<u8>,
     /// Each PLL register's `(M, P << 5 | N)`, once written.
-    pll: [Option<(u8, u8)>; 16],
+    pub(crate) pll: [Option<(u8, u8)>; 16],
     /// The PLL control register, once written.
-    control: Option<u8>,
+    pub(crate) control: Option<u8>,
 }
 
 impl Dac {

@@ -27,6 +27,12 @@
 //!   emulator's, `mame`, `dosbox-staging` or `86box` (`voodoo replay --model`).
 //! * `VOODOO_THREADS=N`: render threads for large untextured triangles (default: the
 //!   machine's cores; `voodoo replay --threads`). The pixels are the same for every N.
+//! * `VOODOO_SAVE_STATE=path`: save the whole board (`sst1_board::state`) at
+//!   `grGlideShutdown`, or, with `VOODOO_SAVE_STATE_SWAP=N`, right after the Nth buffer
+//!   swap (1-based). With `VOODOO_TRACE` the state records how many trace ops had been
+//!   written, so `voodoo replay TRACE --resume path` goes on from there.
+//! * `VOODOO_LOAD_STATE=path`: load a saved board at the first successful
+//!   `grSstWinOpen` of a session, after its own register writes.
 //!
 //! Headless by default: without `VOODOO_WINDOW` there is no window; the board is the only
 //! output.
@@ -216,6 +222,10 @@ struct Ctx {
     recording: Option<Recording>,
     png: Option<(String, Option<Vec<u32>>)>,
     window: Option<window::LiveWindow>,
+    /// `VOODOO_SAVE_STATE` and `VOODOO_SAVE_STATE_SWAP`.
+    save_state: Option<(PathBuf, Option<u32>)>,
+    /// `VOODOO_LOAD_STATE`, until the first successful `grSstWinOpen` loads it.
+    load_state: Option<PathBuf>,
 }
 
 /// The process's Glide state: the session, if one is open, and the LFB shadows, which
@@ -413,6 +423,55 @@ fn png_setting() -> Option<(String, Option<Vec<u32>>)> {
     Some((path, swaps))
 }
 
+/// `VOODOO_SAVE_STATE` and the swap `VOODOO_SAVE_STATE_SWAP` names (`None`: at
+/// `grGlideShutdown`; a value that is not a number is said on stderr and ignored).
+fn save_state_setting() -> Option<(PathBuf, Option<u32>)> {
+    let path = PathBuf::from(std::env::var_os("VOODOO_SAVE_STATE")?);
+    let swap = std::env::var("VOODOO_SAVE_STATE_SWAP").ok().and_then(|v| {
+        let n = v.trim().parse::<u32>().ok().filter(|&n| n > 0);
+        if n.is_none() {
+            eprintln!(
+                "glide3: VOODOO_SAVE_STATE_SWAP={v:.40} is not a swap number (1, 2, ...); \
+                 saving the state at grGlideShutdown"
+            );
+        }
+        n
+    });
+    Some((path, swap))
+}
+
+/// Saves the board to `path` (with the trace ops written so far, when recording).
+fn save_board_state(ctx: &Ctx, path: &std::path::Path) {
+    let ops = ctx
+        .recording
+        .as_ref()
+        .map(|r| r.recorder.borrow().log().ops_written());
+    let board = ctx.board.0.borrow();
+    let bytes = match ops {
+        Some(n) => board.save_state_after(n),
+        None => board.save_state(),
+    };
+    if let Err(e) = sst1_trace::write_file_replacing(path, &bytes) {
+        eprintln!("glide3: cannot save the board state: {e}");
+    }
+}
+
+/// Loads the board saved at `path` (`VOODOO_LOAD_STATE`); a file that cannot be read or
+/// is refused is said on stderr and the board stays as it is.
+fn load_board_state(ctx: &Ctx, path: &std::path::Path) {
+    let mut board = ctx.board.0.borrow_mut();
+    let limit = sst1_board::state::max_state_len(board.config()) as u64;
+    let loaded = sst1_trace::read_file_bounded(path, limit)
+        .map_err(|e| e.to_string())
+        .and_then(|bytes| board.load_state(&bytes).map_err(|e| e.to_string()));
+    if let Err(e) = loaded {
+        eprintln!(
+            "glide3: VOODOO_LOAD_STATE={}: {e}; not loaded",
+            path.display()
+        );
+    }
+}
+
 /// Save the front buffer as RGB PNG (RGB565 expanded by bit replication).
 fn save_png(board: &Board, path: &str) {
     let (w, h) = board.display_size();
@@ -432,6 +491,11 @@ fn after_swap(ctx: &mut Ctx) {
         r.recorder
             .borrow_mut()
             .dump(DumpBuffer::Front, &Recording::dump_name(&r.stem, n));
+    }
+    if let Some((path, Some(swap))) = &ctx.save_state {
+        if *swap == n {
+            save_board_state(ctx, path);
+        }
     }
     if let Some(w) = &ctx.window {
         w.show(&ctx.board.0.borrow());
@@ -522,6 +586,8 @@ pub extern "C" fn grGlideInit() {
                 recording,
                 png: png_setting(),
                 window: window::LiveWindow::from_env(),
+                save_state: save_state_setting(),
+                load_state: std::env::var_os("VOODOO_LOAD_STATE").map(PathBuf::from),
             });
         })
     })
@@ -534,6 +600,9 @@ pub extern "C" fn grGlideShutdown() {
         let Some(ctx) = with_process(|p| p.session.take()) else {
             return;
         };
+        if let Some((path, None)) = &ctx.save_state {
+            save_board_state(&ctx, path);
+        }
         drop(ctx.glide.shutdown());
         if let Some(r) = &ctx.recording {
             if let Err(e) = r.finish() {
@@ -577,14 +646,20 @@ pub extern "C" fn grSstWinOpen(
 ) -> u32 {
     entry("grSstWinOpen", || {
         with(|c| {
-            u32::from(c.glide.win_open(
+            let opened = c.glide.win_open(
                 res as u32,
                 refresh as u32,
                 format as u32,
                 origin as u32,
                 ncolor,
                 naux,
-            ))
+            );
+            if opened {
+                if let Some(path) = c.load_state.take() {
+                    load_board_state(c, &path);
+                }
+            }
+            u32::from(opened)
         })
     })
 }

@@ -20,7 +20,7 @@ pub const BUFFER_PAGE_BYTES: u32 = 0x1000;
 pub const TILE_WIDTH: u32 = 64;
 
 /// The frame-buffer geometry in force.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Layout {
     /// Row pitch in pixels.
     pub row_pixels: u32,

@@ -34,7 +34,7 @@ pub enum Command {
 /// The Pixelfx chip.
 pub struct Fbi {
     /// The register file, indexed by normal-map register number (offset / 4).
-    regs: [u32; 256],
+    pub(crate) regs: [u32; 256],
     /// The triangle parameter registers, kept in their fixed-point formats.
     pub params: TriangleParams,
     /// Frame-buffer memory and layout.
@@ -236,7 +236,7 @@ impl Fbi {
     }
 
     /// Derive the frame-buffer layout from the init registers (spec 5.43-5.44).
-    fn recompute_layout(&mut self) {
+    pub(crate) fn recompute_layout(&mut self) {
         let i1 = FbiInit1(self.reg(addr::FBI_INIT1));
         let i2 = FbiInit2(self.reg(addr::FBI_INIT2));
         self.fb.recompute_layout(

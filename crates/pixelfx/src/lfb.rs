@@ -143,6 +143,26 @@ impl Fbi {
     /// model of the chip ([`crate::model`]); the caller guarantees that the profile this
     /// FBI holds is `M`'s.
     pub fn lfb_write<M: PixelModel>(&mut self, offset: u32, data: u32) {
+        self.lfb_write_lanes::<M>(offset, data, u32::MAX);
+    }
+
+    /// An LFB write of the bytes of `data` that `lanes` selects (a bit set for each bit
+    /// of the bus driven: `0x0000ffff` and `0xffff0000` are the two 16-bit writes at
+    /// `offset` and `offset + 2`); `offset` is the 32-bit word's (bits 1:0 ignored).
+    /// Spec 9: "linear frame buffer accesses may be 32-bit or 16-bit accesses, depending
+    /// upon the linear frame buffer access format". The lanes are swizzled and swapped
+    /// with the data (so with `lfbMode` bit 11 a write of the upper half reaches the
+    /// first pixel of the pair); then a 16-bit format writes the pixel of each half
+    /// written, and leaves the other pixel, its colour and its aux word alone. In the
+    /// 32-bit formats, which take whole-word writes, a write without the low half
+    /// writes no pixel (formats 4, 5) or only the depth of the high half (12-14), and
+    /// one without the high half no depth. Source: MAME `lfb_w` (its `mem_mask` swapped
+    /// with the data, and the per-pixel masks it clears). UNVERIFIED: through the pixel
+    /// pipeline, a format 12-14 pixel missing its colour or depth takes them from
+    /// `color1` and `zaColor`, as the formats without them do (MAME takes the bus
+    /// data).
+    pub fn lfb_write_lanes<M: PixelModel>(&mut self, offset: u32, data: u32, lanes: u32) {
+        let mut lanes = lanes;
         let profile = M::pixel(&self.profile());
         let mut mode = self.lfb_mode();
         let mut data = data;
@@ -153,6 +173,7 @@ impl Fbi {
         }
         if mode.byte_swizzle_writes() {
             data = data.swap_bytes();
+            lanes = lanes.swap_bytes();
         }
         // Spec 5.20: "bit(11) of lfbMode is ignored for linear frame buffer writes using
         // formats 4 or 5" (the 32-bit colour formats).
@@ -164,10 +185,23 @@ impl Fbi {
         };
         if mode.word_swap_writes() && swap {
             data = data.rotate_left(16);
+            lanes = lanes.rotate_left(16);
         }
-        let Some((count, pixels)) = decode(mode, data) else {
+        let Some((count, mut pixels)) = decode(mode, data) else {
             return;
         };
+        let (low, high) = (lanes & 0xffff != 0, lanes >> 16 != 0);
+        let mut written = [low, high];
+        if count == 1 && matches!(mode.0 & 0xf, 12..=14) {
+            if !low {
+                pixels[0].rgb = None;
+                pixels[0].alpha = None;
+            }
+            if !high {
+                pixels[0].depth = None;
+            }
+            written[0] = low || high;
+        }
         let (x0, y) = if count == 2 {
             (
                 ((offset >> 1) & 0x3fe) as i32,
@@ -190,6 +224,9 @@ impl Fbi {
             let scry = self.screen_y(y, fbz.y_origin() && ordering);
             let color1 = Rgba::from_argb(self.reg(addr::COLOR1));
             for (i, p) in pixels.iter().take(count).enumerate() {
+                if !written[i] {
+                    continue;
+                }
                 let x = x0 + i as i32;
                 self.stats.pixels_in += 1;
                 let (left, right, low, high) = st.clip;
@@ -230,6 +267,9 @@ impl Fbi {
             let dither = DrawState::capture::<M>(self, dest).dither;
             let aux = self.fb.aux_base();
             for (i, p) in pixels.iter().take(count).enumerate() {
+                if !written[i] {
+                    continue;
+                }
                 let x = x0 + i as i32;
                 if let Some([r, g, b]) = p.rgb {
                     if let Some(idx) = self.fb.index(dest, x, scry) {
@@ -285,6 +325,68 @@ impl Fbi {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    use crate::model::RuntimeProfile;
+
+    /// An FBI with 640-pixel rows and an aux buffer, `lfbMode` = `mode`.
+    fn fbi_with(mode: u32) -> Fbi {
+        let mut fbi = Fbi::new(2);
+        fbi.write_reg::<RuntimeProfile>(addr::FBI_INIT1, 10 << 4);
+        fbi.write_reg::<RuntimeProfile>(addr::FBI_INIT2, 0x96 << 11);
+        fbi.write_reg::<RuntimeProfile>(addr::LFB_MODE, mode);
+        fbi
+    }
+
+    /// Colour (front buffer) and aux words of pixels 0 and 1 of row 0.
+    fn words(fbi: &Fbi) -> [u16; 4] {
+        let aux = fbi.fb.aux_base().unwrap();
+        [
+            fbi.fb.ram[0],
+            fbi.fb.ram[1],
+            fbi.fb.ram[aux],
+            fbi.fb.ram[aux + 1],
+        ]
+    }
+
+    #[test]
+    fn sixteen_bit_writes_change_only_their_pixel() {
+        let mut fbi = fbi_with(0); // RGB 565, front buffer, no pipeline
+        fbi.lfb_write::<RuntimeProfile>(0, 0x1234_5678);
+        assert_eq!(words(&fbi), [0x5678, 0x1234, 0, 0]);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0xabcd_0000, 0xffff_0000);
+        assert_eq!(words(&fbi), [0x5678, 0xabcd, 0, 0]);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0x0000_1111, 0x0000_ffff);
+        assert_eq!(words(&fbi), [0x1111, 0xabcd, 0, 0]);
+        assert_eq!(fbi.stats.pixels_out, 4);
+        // Word swap (bit 11) moves the lanes with the data: the upper half is pixel 0.
+        let mut fbi = fbi_with(1 << 11);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0x2222_0000, 0xffff_0000);
+        assert_eq!(words(&fbi), [0x2222, 0, 0, 0]);
+        // Byte swizzle (bit 12) too: the low half's bytes land in the high half.
+        let mut fbi = fbi_with(1 << 12);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0x0000_3412, 0x0000_ffff);
+        assert_eq!(words(&fbi), [0, 0x1234, 0, 0]);
+        // Depth, depth: one aux word.
+        let mut fbi = fbi_with(15);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0x0000_4444, 0x0000_ffff);
+        assert_eq!(words(&fbi), [0, 0, 0x4444, 0]);
+    }
+
+    #[test]
+    fn sixteen_bit_writes_in_32_bit_formats() {
+        // Depth + RGB 565: the low half is the colour, the high half the depth.
+        let mut fbi = fbi_with(12);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0x5555_001f, 0xffff_0000);
+        assert_eq!(words(&fbi), [0, 0, 0x5555, 0]);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0x6666_001f, 0x0000_ffff);
+        assert_eq!(words(&fbi), [0x001f, 0, 0x5555, 0]);
+        // ARGB 8888 takes its pixel from a write with the low half only.
+        let mut fbi = fbi_with(5);
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0xffff_0000, 0xffff_0000);
+        assert_eq!((words(&fbi), fbi.stats.pixels_out), ([0; 4], 0));
+        fbi.lfb_write_lanes::<RuntimeProfile>(0, 0x0000_00ff, 0x0000_ffff);
+        assert_eq!((words(&fbi), fbi.stats.pixels_out), ([0x001f, 0, 0, 0], 1));
+    }
 
     #[test]
     fn expand_replicates_high_bits() {

@@ -22,6 +22,7 @@ pub mod profile;
 pub mod raster;
 pub mod setup;
 pub mod span;
+pub mod state;
 pub mod stats;
 pub mod stipple;
 
@@ -30,4 +31,5 @@ pub use model::{PixelModel, RuntimeProfile};
 pub use profile::PixelProfile;
 pub use raster::{NoTexture, TexelSource};
 pub use span::{Lanes, LANES};
+pub use state::FbiState;
 pub use stats::{Kill, Stats};

@@ -21,7 +21,7 @@ pub type Fx20_12 = i32;
 pub type Fx32_32 = i64;
 
 /// The FBI's triangle parameter registers.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct TriangleParams {
     /// Vertex A x, y (12.4).
     pub ax: Fx12_4,

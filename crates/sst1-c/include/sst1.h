@@ -41,7 +41,7 @@ extern "C" {
 
 /* The version of this interface that sst1_api_version() returns. It grows by one when
  * a function or a field is added; existing ones keep their meaning. */
-#define SST1_API_VERSION 1
+#define SST1_API_VERSION 2
 
 /* Size of the memory aperture in bytes (16 MiB). Valid offsets are below it. */
 #define SST1_APERTURE_SIZE 0x1000000u
@@ -79,7 +79,13 @@ typedef enum sst1_result {
      * says what); nothing changed. */
     SST1_ERR_UNSUPPORTED = 8,
     /* A bug in the library (an internal panic, caught). */
-    SST1_ERR_INTERNAL = 9
+    SST1_ERR_INTERNAL = 9,
+    /* sst1_load_state: not a save state, or a damaged, cut-short or forged one. */
+    SST1_ERR_BAD_STATE = 10,
+    /* sst1_load_state: a state in a newer format than this library reads. */
+    SST1_ERR_STATE_VERSION = 11,
+    /* sst1_load_state: a state of a board with another configuration or model. */
+    SST1_ERR_STATE_MISMATCH = 12
 } sst1_result;
 
 /* The model the chips run. Where the reference emulators disagree about what the
@@ -202,11 +208,17 @@ sst1_result sst1_get_render_threads(const sst1_board *board, uint32_t *threads);
  * swapbufferCMD calls the swap callback before returning. */
 sst1_result sst1_write32(sst1_board *board, uint32_t offset, uint32_t value);
 
-/* A 16-bit write at aperture `offset` (a multiple of 2). Not modelled in this version:
- * after the checks of sst1_write32, every 16-bit write returns SST1_ERR_UNSUPPORTED and
- * changes nothing. In the register and texture regions the SST-1 takes 32-bit writes
- * only (UNVERIFIED; 86Box drops 16-bit writes there); in the LFB a 16-bit write stores
- * one pixel, which needs a one-pixel LFB write that the board does not have yet. */
+/* A 16-bit write at aperture `offset` (a multiple of 2). In the LFB it is the half of
+ * a 32-bit LFB write that bit 1 of `offset` selects, and changes only what that half
+ * carries: in the 16-bit formats (lfbMode 0-2, 15) one pixel, its neighbour in the
+ * 32-bit word left as it is; lfbMode's word swap and byte swizzle move the half with
+ * the data (with word swap, a write at offset + 2 stores the first pixel of the
+ * pair). In the 32-bit formats a write of the low half stores the pixel (formats 4,
+ * 5) or its colour (12-14), one of the high half only the depth of 12-14 (API
+ * version 2; version 1 refused every 16-bit write). The SST-1 takes only 32-bit
+ * writes in the register and texture regions (spec sections 4 and 9; 86Box drops
+ * 16-bit writes there): such a write returns SST1_ERR_UNSUPPORTED and changes
+ * nothing. */
 sst1_result sst1_write16(sst1_board *board, uint32_t offset, uint16_t value);
 
 /* A 32-bit read at aperture `offset` (a multiple of 4), stored in *value. Register
@@ -302,6 +314,30 @@ sst1_result sst1_advance_time(sst1_board *board, uint64_t nanoseconds);
  * `status` (its bit 6 reads 0 during the retrace), and moves the host's time on as a
  * read does. */
 sst1_result sst1_vertical_retrace(sst1_board *board, int *active);
+
+/* ------------------------------------------------------------------------------ */
+/* Save states (API version 2)                                                      */
+
+/* Saves the whole board -- registers, FIFOs and timing, frame buffer, texture memory,
+ * NCC tables, palette, fog table, counters, PCI configuration -- into `buffer` as a
+ * versioned byte string (docs/save-states.md), and stores its length in *length. With
+ * `buffer` NULL it only stores the length (the size query; a 4 MiB board with one
+ * 4 MiB TMU takes about 8 MiB). SST1_ERR_NULL if `length` is NULL,
+ * SST1_ERR_BUFFER_TOO_SMALL (with *length set, nothing copied) if `capacity` is less
+ * than the length. The render-thread setting and the swap callback are not part of
+ * the state. */
+sst1_result sst1_save_state(const sst1_board *board, void *buffer, size_t capacity,
+                            size_t *length);
+
+/* Replaces the board's state with the save state in the `length` bytes at `state`,
+ * from sst1_save_state (or `voodoo replay --save-at`) on a board of the same
+ * configuration and model; the board then goes on exactly as the saved one would
+ * have. The render threads and the swap callback stay as they are, and the restored
+ * swap count is not reported to the callback. Refused, with the board unchanged:
+ * SST1_ERR_NULL if `state` is NULL, SST1_ERR_STATE_VERSION for a newer format,
+ * SST1_ERR_STATE_MISMATCH for another configuration or model (sst1_set_model first),
+ * SST1_ERR_BAD_STATE for anything that is not an intact state. */
+sst1_result sst1_load_state(sst1_board *board, const void *state, size_t length);
 
 #ifdef __cplusplus
 }

@@ -17,21 +17,25 @@
 //!   released and after the last use of the handle, so it may call back into the
 //!   library, even to destroy the board.
 //!
-//! Not modelled yet, and said so in the header: 16-bit writes (the board has no
-//! one-pixel LFB write).
+//! 16-bit writes reach the LFB (one pixel of a 16-bit format); in the register and
+//! texture regions, which the SST-1 takes 32 bits wide only, they are refused.
 
 #![allow(clippy::missing_safety_doc)]
 
-use sst1_board::{Board, BoardConfig, BufferKind, Model, Reference};
+use sst1_board::{Board, BoardConfig, BufferKind, Model, Reference, StateError};
 use sst1_regs::{addr, RegisterBus};
 use std::ffi::{c_char, c_int, c_void, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// `SST1_API_VERSION`.
-pub const API_VERSION: u32 = 1;
+pub const API_VERSION: u32 = 2;
 /// `SST1_APERTURE_SIZE`: the 16 MiB memory aperture.
 pub const APERTURE_SIZE: u32 = 0x100_0000;
+/// `SST1_LFB_BASE`: start of the LFB region.
+const LFB_BASE: u32 = 0x40_0000;
+/// `SST1_TEXTURE_BASE`: start of the texture region.
+const TEXTURE_BASE: u32 = 0x80_0000;
 /// `SST1_PCI_CONFIG_SIZE`: PCI configuration space.
 pub const PCI_CONFIG_SIZE: u32 = 0x100;
 /// `SST1_MAX_RENDER_THREADS`.
@@ -60,6 +64,12 @@ pub enum Error {
     Unsupported = 8,
     /// `SST1_ERR_INTERNAL`.
     Internal = 9,
+    /// `SST1_ERR_BAD_STATE`.
+    BadState = 10,
+    /// `SST1_ERR_STATE_VERSION`.
+    StateVersion = 11,
+    /// `SST1_ERR_STATE_MISMATCH`.
+    StateMismatch = 12,
 }
 
 /// `SST1_OK`.
@@ -67,7 +77,7 @@ pub const OK: c_int = 0;
 
 impl Error {
     /// Every code, in order.
-    pub const ALL: [Error; 9] = [
+    pub const ALL: [Error; 12] = [
         Error::Null,
         Error::BadOffset,
         Error::Misaligned,
@@ -77,6 +87,9 @@ impl Error {
         Error::BadArgument,
         Error::Unsupported,
         Error::Internal,
+        Error::BadState,
+        Error::StateVersion,
+        Error::StateMismatch,
     ];
 
     /// What `sst1_error_string` says, NUL-terminated.
@@ -91,6 +104,9 @@ impl Error {
             Error::BadArgument => c"argument out of range",
             Error::Unsupported => c"not modelled by this version of the board",
             Error::Internal => c"internal error in libsst1",
+            Error::BadState => c"not a save state, or a damaged one",
+            Error::StateVersion => c"save state written by a newer libsst1",
+            Error::StateMismatch => c"save state of another board configuration or model",
         }
     }
 }
@@ -332,10 +348,15 @@ fn read16(board: &Sst1Board, offset: u32) -> Result<u16> {
     })
 }
 
-/// A 16-bit write, checked; not modelled (see the header).
-fn write16(_board: &mut Board, offset: u32, _value: u16) -> Result<()> {
+/// A 16-bit write, checked: into the LFB (`Board::write16`); refused in the register
+/// and texture regions, which the SST-1 takes 32 bits wide only (spec 4, 9).
+fn write16(board: &mut Board, offset: u32, value: u16) -> Result<()> {
     check_aperture(offset, 2)?;
-    Err(Error::Unsupported)
+    if !(LFB_BASE..TEXTURE_BASE).contains(&offset) {
+        return Err(Error::Unsupported);
+    }
+    board.write16(offset, value);
+    Ok(())
 }
 
 /// Copies buffer `which` into the caller's `len` values at `pixels` with `convert`
@@ -823,5 +844,73 @@ pub unsafe extern "C" fn sst1_vertical_retrace(board: *mut Sst1Board, active: *m
         let status = b.lock().board.read32(addr::STATUS);
         // SAFETY: not NULL, valid by the caller's promise.
         unsafe { store(active, c_int::from(status & 0x40 == 0)) }
+    })
+}
+
+// ---------------------------------------------------------------------------------
+// Save states
+
+/// The C code of a refused save state.
+fn state_error(e: &StateError) -> Error {
+    match e {
+        StateError::NewerVersion { .. } => Error::StateVersion,
+        StateError::OtherConfig { .. } | StateError::OtherModel { .. } => Error::StateMismatch,
+        StateError::NotAState | StateError::Corrupt(_) | StateError::TooLarge { .. } => {
+            Error::BadState
+        }
+    }
+}
+
+/// `sst1_save_state`.
+#[no_mangle]
+pub unsafe extern "C" fn sst1_save_state(
+    board: *const Sst1Board,
+    buffer: *mut c_void,
+    capacity: usize,
+    length: *mut usize,
+) -> c_int {
+    guard(|| {
+        // SAFETY: the caller's promise.
+        let b = unsafe { handle(board) }?;
+        if length.is_null() {
+            return Err(Error::Null);
+        }
+        let state = b.lock().board.save_state();
+        // SAFETY: not NULL, valid by the caller's promise.
+        unsafe { store(length, state.len()) }?;
+        if buffer.is_null() {
+            // The size query.
+            return Ok(());
+        }
+        if capacity < state.len() {
+            return Err(Error::BufferTooSmall);
+        }
+        // SAFETY: `buffer` is not NULL and holds `capacity >= state.len()` bytes (the
+        // caller's promise); a fresh Vec does not overlap it.
+        unsafe { std::ptr::copy_nonoverlapping(state.as_ptr(), buffer.cast::<u8>(), state.len()) };
+        Ok(())
+    })
+}
+
+/// `sst1_load_state`.
+#[no_mangle]
+pub unsafe extern "C" fn sst1_load_state(
+    board: *mut Sst1Board,
+    state: *const c_void,
+    length: usize,
+) -> c_int {
+    guard(|| {
+        // SAFETY: the caller's promise.
+        let b = unsafe { handle(board) }?;
+        if state.is_null() {
+            return Err(Error::Null);
+        }
+        // SAFETY: not NULL, `length` readable bytes by the caller's promise.
+        let bytes = unsafe { std::slice::from_raw_parts(state.cast::<u8>(), length) };
+        let mut inner = b.lock();
+        inner.board.load_state(bytes).map_err(|e| state_error(&e))?;
+        // The restored swap count is not a swap to report.
+        inner.swaps_reported = inner.board.stats().swaps;
+        Ok(())
     })
 }

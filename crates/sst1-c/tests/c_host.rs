@@ -8,7 +8,8 @@
 //!   widened with `sst1_trace::rgb565_to_rgb8`, and the swaps its callback saw must be
 //!   the board's count;
 //! * `tests/errors.c`, linked to the shared and to the static library, checks every
-//!   error code and the features no trace shows.
+//!   error code and the features no trace shows;
+//! * `tests/state.c` saves a board and loads it into another, and checks every refusal.
 //!
 //! It also checks the header: every function it declares is documented there and
 //! exported by the library, and its result codes are the library's.
@@ -255,6 +256,23 @@ fn every_error_is_a_code() {
         );
         assert!(ran.status.success());
     }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `tests/state.c`: save states from C (a board saved and loaded goes on alike; every
+/// refusal is its code).
+#[test]
+fn save_states_from_c() {
+    let dir = scratch("state");
+    let exe = compile(&crate_dir().join("tests/state.c"), &dir, "state");
+    let ran = run(&exe, &[]);
+    assert_eq!(
+        String::from_utf8_lossy(&ran.stdout),
+        "ok\n",
+        "{}",
+        String::from_utf8_lossy(&ran.stderr)
+    );
+    assert!(ran.status.success());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

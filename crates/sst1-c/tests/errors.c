@@ -211,11 +211,13 @@ int main(void) {
     EXPECT_RC(sst1_read(b, 0, 2, &u32), SST1_OK);
     EXPECT_RC(sst1_pci_write(b, SST1_PCI_CONFIG_SIZE, 0), SST1_ERR_BAD_OFFSET);
     EXPECT_RC(sst1_pci_write(b, 0x41, 0), SST1_ERR_MISALIGNED);
-    /* 16-bit writes are not modelled: refused in every region, nothing written. */
+    /* 16-bit writes to registers and texture memory (32-bit only on the SST-1):
+     * refused, nothing written. */
     EXPECT_RC(sst1_write16(b, REG_FBZMODE, 0x1234), SST1_ERR_UNSUPPORTED);
-    EXPECT_RC(sst1_write16(b, SST1_LFB_BASE, 0x1234), SST1_ERR_UNSUPPORTED);
     EXPECT_RC(sst1_write16(b, SST1_TEXTURE_BASE + 2, 0x1234), SST1_ERR_UNSUPPORTED);
-    EXPECT_RC(sst1_write(b, SST1_LFB_BASE, 2, 0x1234), SST1_ERR_UNSUPPORTED);
+    EXPECT_RC(sst1_write(b, REG_FBZMODE + 2, 2, 0x1234), SST1_ERR_UNSUPPORTED);
+    EXPECT_RC(sst1_read32(b, REG_FBZMODE, &u32), SST1_OK);
+    EXPECT(u32 == 0);
 
     /* Reads: 32 and 16 bits agree; texture memory reads all ones. */
     EXPECT_RC(sst1_write32(b, REG_COLOR1, 0x11223344u), SST1_OK);
@@ -280,6 +282,16 @@ int main(void) {
     EXPECT_RC(sst1_write32(b, REG_LFBMODE, 0), SST1_OK);
     EXPECT_RC(sst1_read16(b, SST1_LFB_BASE + 2, &u16), SST1_OK);
     EXPECT(u16 == 0xf800);
+    /* 16-bit LFB writes store one pixel each (lfbMode 0: RGB 565 into the front
+     * buffer), leaving its neighbour in the 32-bit word alone. */
+    EXPECT_RC(sst1_write16(b, SST1_LFB_BASE + 2, 0x07e0), SST1_OK);
+    EXPECT_RC(sst1_read32(b, SST1_LFB_BASE, &u32), SST1_OK);
+    EXPECT(u32 == 0x07e0f800u);
+    EXPECT_RC(sst1_write(b, SST1_LFB_BASE, 2, 0x001f), SST1_OK);
+    EXPECT_RC(sst1_read32(b, SST1_LFB_BASE, &u32), SST1_OK);
+    EXPECT(u32 == 0x07e0001fu);
+    EXPECT_RC(sst1_read32(b, SST1_LFB_BASE + 4, &u32), SST1_OK);
+    EXPECT(u32 == 0xf800f800u);
     /* A refused write is no swap; removing the callback stops the calls. */
     EXPECT_RC(sst1_write32(b, REG_SWAPBUFFER_CMD + 1, 0), SST1_ERR_MISALIGNED);
     EXPECT_RC(sst1_set_swap_callback(b, NULL, NULL), SST1_OK);

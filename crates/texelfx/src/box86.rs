@@ -114,14 +114,14 @@ pub(crate) struct Entry {
 }
 
 /// How many textures 86Box keeps per TMU (`TEX_CACHE_MAX`).
-const CAPACITY: usize = 64;
+pub(crate) const CAPACITY: usize = 64;
 
 /// The cache of one TMU.
 #[derive(Default)]
 pub(crate) struct Box86Cache {
-    entries: Vec<Entry>,
+    pub(crate) entries: Vec<Entry>,
     /// Round-robin replacement when full.
-    next_victim: usize,
+    pub(crate) next_victim: usize,
     /// The entry whose levels are lent to the TMU for the current triangle.
     pub lent: Option<usize>,
 }

@@ -82,6 +82,11 @@ impl TexelCache {
         level.get(i).copied().unwrap_or(0)
     }
 
+    /// The levels and their valid bits (what a save state keeps of a lent 86Box entry).
+    pub fn storage(&self) -> (&[Vec<u32>; 9], u16) {
+        (&self.levels, self.valid)
+    }
+
     /// The decoded texels of LOD `lod` (empty or stale unless [`TexelCache::has`] it).
     #[inline(always)]
     pub fn level(&self, lod: usize) -> &[u32] {

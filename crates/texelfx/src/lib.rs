@@ -30,6 +30,7 @@ mod layout;
 mod lod;
 mod sample;
 mod span;
+mod state;
 
 use cache::TexelCache;
 pub use combine::DetailRule;
@@ -38,6 +39,7 @@ use layout::Layout;
 pub use span::{ColourLanes, LaneOutput, Lanes, LANES, ZERO_COLOUR};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
+pub use state::{StateMismatch, TmuState};
 
 /// Signed fixed point with 14 integer and 18 fraction bits (`startS`, `dSdX`, ...).
 pub type Fx14_18 = i32;

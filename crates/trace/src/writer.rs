@@ -134,6 +134,12 @@ impl TraceWriter {
         Ok(())
     }
 
+    /// The ops written so far (`config` ops included): a reader of the finished trace
+    /// yields them first, in order.
+    pub fn ops_written(&self) -> u64 {
+        self.ops
+    }
+
     /// Writes one op, or keeps the first error for [`TraceWriter::finish`] and writes
     /// nothing more (a recording cannot stop the bus it records).
     pub fn record(&mut self, op: &TraceOp) {

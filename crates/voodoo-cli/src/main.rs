@@ -87,6 +87,16 @@ enum Command {
         /// model costs).
         #[arg(long)]
         no_timing: bool,
+        /// Save the whole board's state to FILE once the first OP ops of the trace have
+        /// run (docs/save-states.md); the replay goes on to the end. One-board models only.
+        #[arg(long, num_args = 2, value_names = ["OP", "FILE"])]
+        save_at: Option<Vec<String>>,
+        /// Start from the board state in FILE (written by `--save-at`) instead of a fresh
+        /// board, and replay the trace from the op after the one the state was saved at.
+        /// The model, the profile and the timing switch are the state's: `--model`,
+        /// `--profile` and `--no-timing` are refused with it.
+        #[arg(long, value_name = "FILE")]
+        resume: Option<PathBuf>,
     },
     /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
     /// against reference emulators' goldens with the conformance pass rule: every pixel
@@ -259,9 +269,33 @@ fn main() -> ExitCode {
             profile,
             threads,
             no_timing,
-        } => resolve_model(model, profile.as_deref()).and_then(|profile| {
-            if no_timing && profile.is_none() {
+            save_at,
+            resume,
+        } => resolve_model(model, profile.as_deref()).and_then(|resolved| {
+            if no_timing && resolved.is_none() {
                 return Err("--no-timing needs a one-board model (not --model vote)".into());
+            }
+            if (save_at.is_some() || resume.is_some()) && resolved.is_none() {
+                return Err(
+                    "--save-at and --resume need a one-board model (not --model vote)".into(),
+                );
+            }
+            let mut session = Session::default();
+            if let Some(path) = &resume {
+                if model.is_some() || profile.is_some() || no_timing {
+                    return Err(
+                        "--resume takes the model, the profile and the timing switch \
+                                from the state: leave out --model, --profile and --no-timing"
+                            .into(),
+                    );
+                }
+                session.from = Some(load_state(path)?);
+            }
+            if let Some(args) = &save_at {
+                let op = args[0].parse::<u64>().ok().ok_or_else(|| {
+                    format!("--save-at: expected an op count, found {}", quote(&args[0]))
+                })?;
+                session.save_at = Some((op, Path::new(&args[1])));
             }
             replay(
                 &trace,
@@ -269,8 +303,9 @@ fn main() -> ExitCode {
                 png.as_deref(),
                 stats,
                 stats_json.as_deref(),
-                profile.map(|p| (p, !no_timing)),
+                resolved.map(|p| (p, !no_timing)),
                 threads.unwrap_or_else(default_threads),
+                session,
             )
         }),
         Command::Check {
@@ -371,6 +406,40 @@ fn merge_json(base: &mut serde_json::Value, changes: serde_json::Value) {
     }
 }
 
+/// Where a one-board replay starts, and whether it saves the board on the way
+/// (`--resume`, `--save-at`).
+#[derive(Default)]
+struct Session<'a> {
+    /// A board restored from a save state, and the ops of the trace it had run.
+    from: Option<(Board, u64)>,
+    /// Save the board once this many ops of the trace have run, to this file.
+    save_at: Option<(u64, &'a Path)>,
+}
+
+/// The largest save state read: that of the largest board.
+fn max_state_file() -> u64 {
+    sst1_board::state::max_state_len(sst1_board::BoardConfig {
+        fbi_mb: 4,
+        tmus: 3,
+        tmu_mb: 4,
+    }) as u64
+}
+
+/// A board restored from the save state at `path`, and the ops it had run.
+fn load_state(path: &Path) -> Result<(Board, u64), String> {
+    let bytes = read_file_bounded(path, max_state_file()).map_err(|e| e.to_string())?;
+    let (board, info) =
+        Board::from_state(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    let done = info.ops_done.ok_or_else(|| {
+        format!(
+            "{}: the state does not say after which trace op it was taken (it was not \
+             written by `voodoo replay --save-at`), so there is no op to resume from",
+            path.display()
+        )
+    })?;
+    Ok((board, done))
+}
+
 /// What a replay leaves: a board to report on and the front buffer.
 struct Replayed {
     /// The board (with the reference vote: the MAME-profile board).
@@ -386,6 +455,7 @@ fn run(
     stream: TraceStream<'_>,
     profile: Option<(AccuracyProfile, bool)>,
     threads: usize,
+    session: Session<'_>,
     mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
 ) -> Result<Replayed, String> {
     let bar = if std::io::stderr().is_terminal() {
@@ -401,25 +471,93 @@ fn run(
     let config = stream.config();
     let replayed = match profile {
         Some((profile, timing)) => {
-            let mut board = Board::new(config);
-            board.set_profile(profile);
+            let mut stream = stream;
+            let (mut board, skip) = match session.from {
+                Some((board, done)) => {
+                    if board.config() != config {
+                        return Err(format!(
+                            "the state is of a board with {}, the trace's has {}",
+                            describe_config(board.config()),
+                            describe_config(config)
+                        ));
+                    }
+                    (board, done)
+                }
+                None => {
+                    let mut board = Board::new(config);
+                    board.set_profile(profile);
+                    board.set_timing(timing);
+                    (board, 0)
+                }
+            };
             board.set_threads(threads);
-            board.set_timing(timing);
-            execute_stream(stream, &mut board, progress, sink).map(|_| {
-                let front = board.dump_buffer(BufferKind::Front);
-                Replayed { board, front }
-            })
+            // The ops the state had run.
+            let mut skipped = 0;
+            for op in stream
+                .by_ref()
+                .take(usize::try_from(skip).unwrap_or(usize::MAX))
+            {
+                op.map_err(|e| e.to_string())?;
+                skipped += 1;
+            }
+            if skipped < skip {
+                return Err(format!(
+                    "the state was saved after op {skip}, but the trace has only {skipped} ops"
+                ));
+            }
+            // Progress counts the trace's ops from its first.
+            let from = |base: u64| move |done: usize| progress(done + base as usize);
+            let mut base = skipped;
+            if let Some((at, file)) = session.save_at {
+                if at < skip {
+                    return Err(format!(
+                        "--save-at {at}: the state resumed from was saved after op {skip}, later"
+                    ));
+                }
+                let ahead = usize::try_from(at - skip).unwrap_or(usize::MAX);
+                let done = execute_stream(
+                    stream.by_ref().take(ahead),
+                    &mut board,
+                    from(base),
+                    &mut sink,
+                )
+                .map_err(|e| e.to_string())?;
+                if done < ahead {
+                    return Err(format!(
+                        "--save-at {at}: the trace has only {} ops; no state saved",
+                        skip as usize + done
+                    ));
+                }
+                write_file_replacing(file, &board.save_state_after(at))
+                    .map_err(|e| e.to_string())?;
+                println!("saved the board after op {at} to {}", file.display());
+                base = at;
+            }
+            execute_stream(stream, &mut board, from(base), sink)
+                .map(|_| {
+                    let front = board.dump_buffer(BufferKind::Front);
+                    Replayed { board, front }
+                })
+                .map_err(|e| e.to_string())
         }
-        None => execute_references_stream(stream, config, progress, |dump| sink(dump.voted)).map(
-            |boards| {
+        None => execute_references_stream(stream, config, progress, |dump| sink(dump.voted))
+            .map(|boards| {
                 let front = vote_buffer(&boards, BufferKind::Front);
                 let [board, _, _] = boards;
                 Replayed { board, front }
-            },
-        ),
+            })
+            .map_err(|e| e.to_string()),
     };
     bar.finish_and_clear();
-    replayed.map_err(|e| e.to_string())
+    replayed
+}
+
+/// A board configuration in words.
+fn describe_config(c: sst1_board::BoardConfig) -> String {
+    format!(
+        "{} MiB of frame buffer and {} TMU(s) of {} MiB",
+        c.fbi_mb, c.tmus, c.tmu_mb
+    )
 }
 
 /// Writes the front buffer as an RGB PNG (RGB565 expanded by bit replication), through a
@@ -550,10 +688,11 @@ fn replay(
     stats_json: Option<&Path>,
     profile: Option<(AccuracyProfile, bool)>,
     threads: usize,
+    session: Session<'_>,
 ) -> Result<(), String> {
     let stream = open_trace(path).map_err(|e| e.to_string())?;
     let mut target = DumpTarget::new(path, out)?;
-    let replayed = run(stream, profile, threads, |dump| {
+    let replayed = run(stream, profile, threads, session, |dump| {
         let written = target.write(&dump)?;
         println!("wrote {}", written.display());
         Ok(())
@@ -649,6 +788,7 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
         stream,
         profile.map(|p| (p, true)),
         default_threads(),
+        Session::default(),
         |dump| {
             let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
             let found: Vec<(&str, Vec<u16>)> = Reference::ALL
@@ -708,6 +848,7 @@ fn demo(png: &Path) -> Result<(), String> {
         stream,
         Some((AccuracyProfile::default(), true)),
         default_threads(),
+        Session::default(),
         |_| Ok(()),
     )?;
     let (w, h) = write_front_png(&replayed, png)?;

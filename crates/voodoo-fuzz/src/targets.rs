@@ -73,6 +73,13 @@ pub const TARGETS: &[Target] = &[
         run: recorder,
         weight: 2,
     },
+    Target {
+        name: "state",
+        about: "save states (Board::from_state): a damaged one is refused or loads and runs; a loaded one saves and reloads to the same bytes",
+        seeds: state_seeds,
+        run: state,
+        weight: 1,
+    },
 ];
 
 /// The longest error message any input may cause (item 16: quotes are cut short).
@@ -320,4 +327,51 @@ fn recorder_seeds(repo: &Repository) -> Vec<Vec<u8>> {
             bytes
         })
         .collect()
+}
+
+/// A save state: refused with an error, or a board that saves to bytes that load back
+/// to the same bytes and that takes accesses afterwards.
+fn state(input: &[u8]) {
+    let Ok((mut board, _)) = Board::from_state(input) else {
+        return;
+    };
+    let saved = board.save_state();
+    let again = match Board::from_state(&saved) {
+        Ok((b, _)) => b.save_state(),
+        Err(e) => panic!("a loaded state saves bytes that do not load: {e}"),
+    };
+    assert!(again == saved, "a state reloaded saves other bytes");
+    for (addr, value) in [(0x124, 0), (0x080, 0), (0x400000, 0x1234_5678), (0x128, 1)] {
+        board.write32(addr, value);
+    }
+    board.read32(0);
+}
+
+/// States of a small board (2 MiB, one 1 MiB TMU, so that a case copies little): fresh,
+/// and after the start of each textured repository trace on the hardware and the 86Box
+/// model (whose texture cache the state holds).
+fn state_seeds(repo: &Repository) -> Vec<Vec<u8>> {
+    let config = sst1_board::BoardConfig {
+        fbi_mb: 2,
+        tmus: 1,
+        tmu_mb: 1,
+    };
+    let mut seeds = vec![Board::new(config).save_state()];
+    let textured = repo.traces().iter().filter(|(_, t)| {
+        t.ops
+            .iter()
+            .any(|op| matches!(op, TraceOp::Write { addr, .. } if *addr >= 0x80_0000))
+    });
+    for (_, trace) in textured.take(2) {
+        for model in [
+            sst1_board::Model::Hardware,
+            sst1_board::Model::Reference(sst1_board::Reference::Box86),
+        ] {
+            let mut board = Board::new(config);
+            board.set_model(model);
+            execute(&trace.ops[..trace.ops.len().min(4000)], &mut board, |_| {});
+            seeds.push(board.save_state_after(4000));
+        }
+    }
+    seeds
 }
