@@ -79,7 +79,13 @@ fn glide_programs_save_and_load_states() {
             ("VOODOO_SAVE_STATE_SWAP", Path::new("1")),
         ],
     );
-    run(&exe, &[("VOODOO_SAVE_STATE", &p("end.state"))]);
+    run(
+        &exe,
+        &[
+            ("VOODOO_TRACE", &p("end.trace")),
+            ("VOODOO_SAVE_STATE", &p("end.state")),
+        ],
+    );
 
     let trace = load_trace(&p("frames.trace")).unwrap();
     let mut whole = Board::new(trace.board_config());
@@ -110,11 +116,26 @@ fn glide_programs_save_and_load_states() {
     assert_eq!(resumed.stats(), whole.stats());
     assert_eq!(resumed.timing().cycles(), whole.timing().cycles());
 
-    // At shutdown: the board the whole trace leaves (no trace was recorded: no op count).
+    // At shutdown: the board as the program left it, before grGlideShutdown's close
+    // sequence (the 27 writes of grSstWinClose, which the trace records after it).
     let bytes = std::fs::read(p("end.state")).unwrap();
     let (end, info) = Board::from_state(&bytes).unwrap();
-    assert_eq!(info.ops_done, None);
-    assert_eq!(end.save_state(), whole.save_state());
+    let end_trace = load_trace(&p("end.trace")).unwrap();
+    let before_close = info.ops_done.expect("recorded: an op count") as usize;
+    assert_eq!(end_trace.ops.len() - before_close, 27, "the close sequence");
+    assert_eq!(
+        end_trace.ops.last(),
+        Some(&TraceOp::Write {
+            addr: 0x120,
+            value: 0
+        })
+    );
+    let mut open = Board::new(end_trace.board_config());
+    execute(&end_trace.ops[..before_close], &mut open, |_| {});
+    assert!(
+        end.save_state() == open.save_state(),
+        "the state at shutdown"
+    );
 
     // Loaded at grSstWinOpen: the program's frames come on top of the state's.
     run(
