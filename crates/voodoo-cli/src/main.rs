@@ -16,7 +16,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use sst1_board::{AccuracyProfile, Board, BufferKind, Reference};
+use sst1_board::{AccuracyProfile, Board, BufferKind, Method, Reference};
 use sst1_regs::map;
 use sst1_trace::judge;
 use sst1_trace::text::parse_number;
@@ -87,6 +87,11 @@ enum Command {
         /// model costs).
         #[arg(long)]
         no_timing: bool,
+        /// How to draw (one-board models only): `exact`, the default, and `reference` are
+        /// the exact paths (span kernels; pixel by pixel); the others approximate the
+        /// texture stages for speed, each giving up what its line says (docs/methods.md).
+        #[arg(long, value_enum, value_name = "NAME")]
+        method: Option<MethodArg>,
     },
     /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
     /// against reference emulators' goldens with the conformance pass rule: every pixel
@@ -201,6 +206,38 @@ enum SceneKind {
     RandomStates,
 }
 
+/// How a replay draws: `sst1_board::Method`, spelled as its `name()`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum MethodArg {
+    /// Exact fast path: the span kernels (the default).
+    Exact,
+    /// Exact generic path: pixel by pixel, every register read per pixel.
+    Reference,
+    /// Approximate: point sampling instead of bilinear (loses the 4-bit filter fractions).
+    Nearest,
+    /// Approximate: the LOD's W term once per chunk of up to 64 pixels of a span (loses
+    /// the LOD's change along it).
+    LodPerChunk,
+    /// Approximate: the perspective divide in single precision (24-bit mantissa: texel
+    /// coordinates move where S/W is large).
+    FloatDivide,
+    /// Approximate: nearest, lod-per-chunk and float-divide together.
+    Fastest,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::Exact => Method::Exact,
+            MethodArg::Reference => Method::Reference,
+            MethodArg::Nearest => Method::Nearest,
+            MethodArg::LodPerChunk => Method::LodPerChunk,
+            MethodArg::FloatDivide => Method::FloatDivide,
+            MethodArg::Fastest => Method::Fastest,
+        }
+    }
+}
+
 /// The model of the board a replay runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 enum Model {
@@ -259,9 +296,13 @@ fn main() -> ExitCode {
             profile,
             threads,
             no_timing,
+            method,
         } => resolve_model(model, profile.as_deref()).and_then(|profile| {
             if no_timing && profile.is_none() {
                 return Err("--no-timing needs a one-board model (not --model vote)".into());
+            }
+            if method.is_some() && profile.is_none() {
+                return Err("--method needs a one-board model (not --model vote)".into());
             }
             replay(
                 &trace,
@@ -269,7 +310,11 @@ fn main() -> ExitCode {
                 png.as_deref(),
                 stats,
                 stats_json.as_deref(),
-                profile.map(|p| (p, !no_timing)),
+                profile.map(|p| OneBoard {
+                    profile: p,
+                    timing: !no_timing,
+                    method: method.map_or(Method::Exact, Method::from),
+                }),
                 threads.unwrap_or_else(default_threads),
             )
         }),
@@ -371,6 +416,26 @@ fn merge_json(base: &mut serde_json::Value, changes: serde_json::Value) {
     }
 }
 
+/// How one board of a replay is set up.
+#[derive(Clone, Copy)]
+struct OneBoard {
+    profile: AccuracyProfile,
+    /// The timing model on.
+    timing: bool,
+    method: Method,
+}
+
+impl OneBoard {
+    /// `profile` with the timing model and the exact fast path.
+    fn exact(profile: AccuracyProfile) -> Self {
+        Self {
+            profile,
+            timing: true,
+            method: Method::Exact,
+        }
+    }
+}
+
 /// What a replay leaves: a board to report on and the front buffer.
 struct Replayed {
     /// The board (with the reference vote: the MAME-profile board).
@@ -384,7 +449,7 @@ struct Replayed {
 /// to `sink` when it is reached, with a progress counter when stderr is a terminal.
 fn run(
     stream: TraceStream<'_>,
-    profile: Option<(AccuracyProfile, bool)>,
+    profile: Option<OneBoard>,
     threads: usize,
     mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
 ) -> Result<Replayed, String> {
@@ -400,11 +465,12 @@ fn run(
     let progress = |done: usize| bar.set_position(done as u64);
     let config = stream.config();
     let replayed = match profile {
-        Some((profile, timing)) => {
+        Some(one) => {
             let mut board = Board::new(config);
-            board.set_profile(profile);
+            board.set_profile(one.profile);
+            board.set_method(one.method);
             board.set_threads(threads);
-            board.set_timing(timing);
+            board.set_timing(one.timing);
             execute_stream(stream, &mut board, progress, sink).map(|_| {
                 let front = board.dump_buffer(BufferKind::Front);
                 Replayed { board, front }
@@ -548,7 +614,7 @@ fn replay(
     png: Option<&Path>,
     stats: bool,
     stats_json: Option<&Path>,
-    profile: Option<(AccuracyProfile, bool)>,
+    profile: Option<OneBoard>,
     threads: usize,
 ) -> Result<(), String> {
     let stream = open_trace(path).map_err(|e| e.to_string())?;
@@ -647,7 +713,7 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     let (mut consensus, mut majority, mut judged, mut unjudged) = (0, 0, 0, 0);
     run(
         stream,
-        profile.map(|p| (p, true)),
+        profile.map(OneBoard::exact),
         default_threads(),
         |dump| {
             let stem = dump.file.strip_suffix(".raw").unwrap_or(&dump.file);
@@ -706,7 +772,7 @@ fn demo(png: &Path) -> Result<(), String> {
     let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
     let replayed = run(
         stream,
-        Some((AccuracyProfile::default(), true)),
+        Some(OneBoard::exact(AccuracyProfile::default())),
         default_threads(),
         |_| Ok(()),
     )?;
