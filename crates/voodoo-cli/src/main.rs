@@ -151,6 +151,11 @@ enum Command {
         /// drawn at random, so buffers may overlap.
         #[arg(long)]
         layout: bool,
+        /// The family of a stability scene (stability): thin, large, w_near_zero,
+        /// w_near_two, persp, depth_z, depth_w, gradients, lod or long_runs
+        /// (`sst1_trace::scenes::stability`).
+        #[arg(long, value_name = "NAME")]
+        family: Option<String>,
         /// Output file (replaced through a temporary file); default stdout.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -204,6 +209,9 @@ enum SceneKind {
     SmallTexTris,
     /// Triangles of random size in random drawing states.
     RandomStates,
+    /// A family of stability scenes (`--family`): one parameter swept towards where
+    /// arithmetic breaks, one dump per step.
+    Stability,
 }
 
 /// How a replay draws: `sst1_board::Method`, spelled as its `name()`.
@@ -335,8 +343,17 @@ fn main() -> ExitCode {
             count,
             tmus,
             layout,
+            family,
             out,
-        } => gen(scene, seed, count, tmus, layout, out.as_deref()),
+        } => gen(
+            scene,
+            seed,
+            count,
+            tmus,
+            layout,
+            family.as_deref(),
+            out.as_deref(),
+        ),
         Command::Bench {
             traces,
             iters,
@@ -882,10 +899,30 @@ fn gen(
     count: Option<u32>,
     tmus: u32,
     layout: bool,
+    family: Option<&str>,
     out: Option<&Path>,
 ) -> Result<(), String> {
     use sst1_trace::scenes;
     let text = match scene {
+        SceneKind::Stability => {
+            let names = || {
+                scenes::stability::FAMILIES
+                    .iter()
+                    .map(|f| f.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            let name =
+                family.ok_or_else(|| format!("stability needs --family: one of {}", names()))?;
+            let f = scenes::stability::family(name).ok_or_else(|| {
+                format!(
+                    "--family {}: not a stability family ({})",
+                    quote(name),
+                    names()
+                )
+            })?;
+            scenes::stability::scene(f)
+        }
         SceneKind::SmallTris => scenes::small_triangles(seed, count.unwrap_or(20000), false),
         SceneKind::SmallTexTris => scenes::small_triangles(seed, count.unwrap_or(20000), true),
         SceneKind::RandomStates => {
