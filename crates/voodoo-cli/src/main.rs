@@ -9,6 +9,8 @@
 //! `sst1_trace::output`); dumps go to a fresh folder unless `--out` names one.
 
 mod bench;
+mod chart;
+mod plot;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -189,6 +191,18 @@ enum Command {
         /// the machine's cores; 1 leaves the row out.
         #[arg(long, value_name = "N")]
         threads: Option<usize>,
+        /// Also run each approximate method (`--method` of `replay`) on one thread, a row
+        /// each, with its speed-up over the fast path (`x/f`).
+        #[arg(long)]
+        methods: bool,
+        /// Instead: replay every trace of the repository (or the TRACES given) with every
+        /// method and write into DIR the table (table.md, .csv, .json: Mpix/s, speed-up,
+        /// share of pixels identical to `exact`, PSNR, largest channel error), the
+        /// stability families' errors per step (stability.md, .csv) and PNG charts
+        /// (speed_vs_accuracy, error_histogram, error_map, stability). `--iters` runs
+        /// per method (1 for a quick chart).
+        #[arg(long, value_name = "DIR")]
+        chart: Option<PathBuf>,
     },
     /// Convert a trace between the text and binary forms, chosen by OUT's extension:
     /// `.vtrace` binary, `.vtrace.gz` gzip binary, `.gz` gzip text, anything else text.
@@ -362,8 +376,12 @@ fn main() -> ExitCode {
             states,
             trace_dir,
             threads,
+            methods,
+            chart,
         } => bench::bench(&bench::Options {
             threads: threads.unwrap_or_else(default_threads),
+            methods,
+            chart,
             traces,
             iters,
             json,

@@ -18,7 +18,7 @@
 //! | `large` | half-size 256 to 2047.9 px around (0, 0) | 12.4 range (+-2048), triangles far larger than the screen |
 //! | `w_near_zero` | 1/W scale, 1 to 2^-20 | 2.30 W and 14.18 S/W, T/W precision |
 //! | `w_near_two` | 1/W, 1 to 1.9999 | the largest 2.30 holds |
-//! | `persp` | 1/W ratio across a triangle, 1 to 2^16 | steep perspective: LOD and divide per pixel |
+//! | `persp` | 1/W ratio across a wall, left to right, 1 to 2^16 | steep perspective along spans: LOD and divide per pixel |
 //! | `depth_z` | Z distance from the ends of 20.12, 256 to 1/4096 | Z-buffer resolution at 0 and 65535 |
 //! | `depth_w` | 1/W of the W buffer, 1.9 to 2^-29 | W-float depth exponent range |
 //! | `gradients` | colour and S/T slope, 1 to 2047 per pixel | 12.12 colour and 14.18 S/T ranges |
@@ -309,10 +309,11 @@ fn w_near_two(max: f64) -> Vec<[Vertex; 3]> {
     quad(|i| (CORNERS[i], CORNER_ST[i], oow[i]))
 }
 
-/// A floor receding from 1/W 1 at the bottom to `1 / ratio` at the top.
+/// A wall receding from 1/W 1 at the left to `1 / ratio` at the right: W changes along
+/// every span, the hard case for a LOD or divide taken once per chunk.
 fn persp(ratio: f64) -> Vec<[Vertex; 3]> {
     let far = 1.0 / ratio;
-    let oow = [far, far, 1.0, 1.0];
+    let oow = [1.0, far, far, 1.0];
     let st = [(0.0, 0.0), (2048.0, 0.0), (2048.0, 2048.0), (0.0, 2048.0)];
     let corners = [(0.0, 40.0), (640.0, 40.0), (640.0, 480.0), (0.0, 480.0)];
     quad(|i| (corners[i], st[i], oow[i]))
