@@ -18,7 +18,8 @@ pub enum Method {
     Reference,
     /// Approximate: point sampling instead of bilinear filtering.
     Nearest,
-    /// Approximate: the LOD's W term once per chunk of a span instead of per pixel.
+    /// Approximate: the LOD once per chunk of a span (its first live pixel's) instead of
+    /// per pixel.
     LodPerChunk,
     /// Approximate: the perspective divide in single precision.
     FloatDivide,
@@ -63,7 +64,7 @@ impl Method {
                 "approximate: point sampling instead of bilinear (loses the 4-bit filter fractions)"
             }
             Method::LodPerChunk => {
-                "approximate: LOD W term once per chunk of up to 64 pixels (loses the LOD's change along a span)"
+                "approximate: LOD once per chunk of up to 64 pixels (loses the LOD's change along a span)"
             }
             Method::FloatDivide => {
                 "approximate: perspective divide in f32 (24-bit mantissa: texel coordinates move where S/W is large)"

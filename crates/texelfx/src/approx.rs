@@ -13,10 +13,12 @@
 //! - [`Approx::point_sampling`]: the filter bits of `textureMode` read as point sampling
 //!   for magnification and minification, so one texel is fetched instead of four and
 //!   nothing is blended. Loses the bilinear fractions (4 bits in S and T).
-//! - [`Approx::lod_per_chunk`]: the LOD's `log2(1/W)` term computed for the chunk's first
-//!   live lane and used for all its lanes (up to 64 pixels of one span), instead of per
-//!   pixel. The dither and clamp stay per lane. Loses the LOD's change along the chunk:
-//!   where W changes fast (steep perspective), the level is chosen late or early.
+//! - [`Approx::lod_per_chunk`]: the LOD (its `log2(1/W)` term, the dither and the clamp)
+//!   computed for the chunk's first live lane and used for all its lanes (up to 64
+//!   pixels of one span), instead of per pixel, so that the chunk samples one level with
+//!   one filter. Loses the LOD's change along the chunk: where W changes fast along a
+//!   span (steep perspective), the level is chosen late or early, and the LOD dither's
+//!   4x4 pattern becomes one value per chunk.
 //! - [`Approx::float_divide`]: what the TMU computes from 1/W in single precision: the
 //!   perspective divide `S * 256 / W`, `T * 256 / W` (eight lanes to a vector instead of
 //!   four doubles), and, for the hardware model's LOD arithmetic (DOSBox Staging's), the
@@ -33,7 +35,7 @@ use crate::span::LANES;
 pub struct Approx {
     /// Point sampling instead of bilinear filtering, at every LOD.
     pub point_sampling: bool,
-    /// The LOD's W term once per chunk (its first live lane) instead of per pixel.
+    /// The LOD once per chunk (its first live lane) instead of per pixel.
     pub lod_per_chunk: bool,
     /// The perspective divide in `f32` instead of `f64`.
     pub float_divide: bool,

@@ -308,8 +308,8 @@ impl Tmu {
     }
 
     /// Stage 3: the LOD of each lane, its level, parity and filter (as [`Tmu::sample`]
-    /// and [`lod::pixel_lod`]); with `lod_from` ([`crate::Approx::lod_per_chunk`]), the W
-    /// term of that lane for all of them.
+    /// and [`lod::pixel_lod`]); with `lod_from` ([`crate::Approx::lod_per_chunk`]), the
+    /// LOD of that lane (its W term computed once) for all of them.
     #[inline(always)]
     fn lod_lanes<M: TexelModel>(
         &self,
@@ -364,6 +364,11 @@ impl Tmu {
         // A lodmin above lodmax gives lodmin (as `lod::pixel_lod`).
         for v in lod[..n].iter_mut() {
             *v = (*v).min(hi).max(lo);
+        }
+        if let Some(from) = lod_from {
+            // `Approx::lod_per_chunk`: that lane's whole LOD, dither included, for all.
+            let v = lod[from % LANES];
+            lod[..n].fill(v);
         }
         let lodmask = self.layout.lodmask as i32;
         for i in 0..n {

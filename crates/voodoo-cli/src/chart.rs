@@ -3,7 +3,8 @@
 //! exact fast path:
 //!
 //! - `table.md`, `table.csv`, `table.json`: per trace and method, Mpix/s (`fbiPixelsIn`
-//!   per second of the replaying thread's CPU time, one render thread, best of `iters`),
+//!   per second of the replaying thread's CPU time, one render thread, best of `iters`
+//!   rounds that run every method in turn),
 //!   the speed-up over `exact`, the share of pixels identical to `exact`, PSNR and the
 //!   largest per-channel error (8-bit channels, RGB565 expanded by bit replication);
 //! - `stability.md` / `stability.csv`: the same errors per step of each stability family
@@ -297,25 +298,22 @@ struct Replay {
     pixels_in: u64,
 }
 
-/// Replays `trace` with `method` on one render thread, `iters` times; the fastest CPU
-/// time is kept (the pixels are the same every time).
-fn replay(trace: &Trace, method: Method, iters: u32) -> Replay {
-    let mut best: Option<Replay> = None;
-    for _ in 0..iters.max(1) {
-        let mut board = Board::new(trace.board_config());
-        board.set_method(method);
-        board.set_threads(1);
-        let cpu0 = thread_cpu_time();
-        let wall0 = std::time::Instant::now();
-        let dumps = execute(&trace.ops, &mut board, |_| {});
-        let secs = match (thread_cpu_time(), cpu0) {
-            (Some(b), Some(a)) => b.saturating_sub(a).as_secs_f64(),
-            _ => wall0.elapsed().as_secs_f64(),
-        };
-        if best.as_ref().is_some_and(|b| b.secs <= secs) {
-            continue;
-        }
-        let mut colour: Vec<(String, u32, Vec<u16>)> = dumps
+/// Replays `trace` once with `method` on one render thread; the colour dumps are kept
+/// only with `keep` (the pixels are the same on every run).
+fn replay(trace: &Trace, method: Method, keep: bool) -> Replay {
+    let mut board = Board::new(trace.board_config());
+    board.set_method(method);
+    board.set_threads(1);
+    let cpu0 = thread_cpu_time();
+    let wall0 = std::time::Instant::now();
+    let dumps = execute(&trace.ops, &mut board, |_| {});
+    let secs = match (thread_cpu_time(), cpu0) {
+        (Some(b), Some(a)) => b.saturating_sub(a).as_secs_f64(),
+        _ => wall0.elapsed().as_secs_f64(),
+    };
+    let mut colour: Vec<(String, u32, Vec<u16>)> = Vec::new();
+    if keep {
+        colour = dumps
             .into_iter()
             .filter(|d| matches!(d.buffer, DumpBuffer::Front | DumpBuffer::Back))
             .map(|d| (d.file, d.width, d.data))
@@ -328,13 +326,29 @@ fn replay(trace: &Trace, method: Method, iters: u32) -> Replay {
                 board.dump_buffer(BufferKind::Front),
             ));
         }
-        best = Some(Replay {
-            dumps: colour,
-            secs,
-            pixels_in: board.stats().pixels_in,
-        });
     }
-    best.expect("at least one replay")
+    Replay {
+        dumps: colour,
+        secs,
+        pixels_in: board.stats().pixels_in,
+    }
+}
+
+/// Every method on `trace`, `iters` rounds of one replay per method in turn (so that a
+/// change in the machine's load falls on every method alike), keeping each method's
+/// fastest CPU time: in [`Method::ALL`] order.
+fn replay_all(trace: &Trace, iters: u32) -> Vec<Replay> {
+    let mut best: Vec<Replay> = Method::ALL
+        .iter()
+        .map(|&m| replay(trace, m, true))
+        .collect();
+    for _ in 1..iters.max(1) {
+        for (slot, &m) in best.iter_mut().zip(Method::ALL.iter()) {
+            let again = replay(trace, m, false);
+            slot.secs = slot.secs.min(again.secs);
+        }
+    }
+    best
 }
 
 /// The traces to chart: `given` (each in the group of its folder's name), or every trace of [`TRACE_DIRS`] under `root`, sorted
@@ -440,17 +454,12 @@ pub fn chart(o: &ChartOptions<'_>) -> Result<(), String> {
     for (group, path) in &traces {
         let trace = load_trace(path).map_err(|e| e.to_string())?;
         let name = stem(path);
-        let exact = replay(&trace, Method::Exact, o.iters);
+        let runs = replay_all(&trace, o.iters);
+        let exact = &runs[0];
         let family = (group == "stability")
             .then(|| stability::family(&name))
             .flatten();
-        for method in Method::ALL {
-            let run = if method == Method::Exact {
-                None
-            } else {
-                Some(replay(&trace, method, o.iters))
-            };
-            let got = run.as_ref().unwrap_or(&exact);
+        for (method, got) in Method::ALL.into_iter().zip(&runs) {
             let mut total = Accuracy::default();
             for (k, ((file, width, e), (_, _, g))) in exact.dumps.iter().zip(&got.dumps).enumerate()
             {

@@ -237,8 +237,8 @@ enum MethodArg {
     Reference,
     /// Approximate: point sampling instead of bilinear (loses the 4-bit filter fractions).
     Nearest,
-    /// Approximate: the LOD's W term once per chunk of up to 64 pixels of a span (loses
-    /// the LOD's change along it).
+    /// Approximate: the LOD once per chunk of up to 64 pixels of a span (loses the LOD's
+    /// change along it).
     LodPerChunk,
     /// Approximate: the perspective divide in single precision (24-bit mantissa: texel
     /// coordinates move where S/W is large).
