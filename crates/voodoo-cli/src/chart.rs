@@ -9,8 +9,8 @@
 //!   largest per-channel error (8-bit channels, RGB565 expanded by bit replication);
 //! - `stability.md` / `stability.csv`: the same errors per step of each stability family
 //!   (`traces/stability`), with the swept value;
-//! - `speed_vs_accuracy.png`: one point per approximate method and trace, speed-up
-//!   against PSNR; `error_histogram.png`: per method, the share of pixels at each size of
+//! - `speed_vs_accuracy.png`: one point per approximate method and trace of at least a
+//!   million pixels, speed-up against PSNR; `error_histogram.png`: per method, the share of pixels at each size of
 //!   error; `error_map.png`: where the worst method's errors fall on the worst trace;
 //!   `stability.png`: per family, each method's share of differing pixels per step.
 //!
@@ -403,8 +403,8 @@ struct Worst {
 }
 
 /// A picture of where `got` differs from `exact`: the exact frame dimmed to grey, each
-/// differing pixel coloured from yellow (small) to red (large) by its largest channel
-/// error.
+/// differing pixel coloured from yellow (1) to red (128 and more) by the bit length of
+/// its largest channel error.
 pub fn error_map(exact: &[u16], got: &[u16], width: u32) -> Canvas {
     let width = width.max(1);
     let height = (exact.len() as u32).div_ceil(width).max(1);
@@ -418,8 +418,8 @@ pub fn error_map(exact: &[u16], got: &[u16], width: u32) -> Canvas {
             let g = ((u32::from(a[0]) + u32::from(a[1]) + u32::from(a[2])) / 6 + 40) as u8;
             [g, g, g]
         } else {
-            // 1 -> yellow, 64 and more -> red.
-            let k = (u32::from(err).min(64) * 255 / 64) as u8;
+            // By the error's bit length: 1 -> yellow, 128 and more -> red.
+            let k = ((8 - err.leading_zeros()) * 255 / 8) as u8;
             [255, 255 - k, 0]
         };
         c.put(x, y, colour);
@@ -544,8 +544,13 @@ fn plotted() -> Vec<Method> {
         .collect()
 }
 
+/// The fewest pixels a trace draws for its point in [`speed_chart`]: shorter replays
+/// take milliseconds, too short to time on a shared machine.
+pub const SPEED_CHART_MIN_PIXELS: u64 = 1_000_000;
+
 /// Speed-up over `exact` (log2 axis, 1/4x to 4x) against PSNR (10 to 70 dB; identical
-/// at the top line), one point per method and trace.
+/// at the top line), one point per method and trace of at least
+/// [`SPEED_CHART_MIN_PIXELS`].
 pub fn speed_chart(rows: &[Row]) -> Canvas {
     let mut c = Canvas::new(900, 560);
     let a = Area {
@@ -576,7 +581,10 @@ pub fn speed_chart(rows: &[Row]) -> Canvas {
         &yt,
         "SPEED-UP OVER EXACT (X) AGAINST PSNR DB (= IDENTICAL)",
     );
-    for r in rows.iter().filter(|r| r.method != Method::Exact) {
+    for r in rows
+        .iter()
+        .filter(|r| r.method != Method::Exact && r.pixels_in >= SPEED_CHART_MIN_PIXELS)
+    {
         let colour = METHOD_COLOURS[Method::ALL.iter().position(|m| *m == r.method).unwrap_or(0)];
         let y = r.accuracy.psnr().unwrap_or(75.0);
         let (px, py) = a.at(r.speedup.max(1e-6).log2(), y);
@@ -810,6 +818,7 @@ mod tests {
         assert_eq!(stability_chart(&stab).img.width(), 60 + 5 * 230 + 160);
         assert_eq!(histogram_chart(&rows).img.height(), 420);
         let map = error_map(&[rgb(1, 0, 0), 0], &[0, 0], 2);
-        assert_eq!(map.img.get_pixel(0, 0).0, [255, 224, 0]);
+        // An error of 8 is 4 bits long: half-way from yellow to red.
+        assert_eq!(map.img.get_pixel(0, 0).0, [255, 128, 0]);
     }
 }
