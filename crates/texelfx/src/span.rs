@@ -331,7 +331,10 @@ impl Tmu {
         // UNVERIFIED (as `lod::pixel_lod`): lodmax capped at 8.0.
         let hi = ((tl.lodmax() << 6) as i32).min(0x800);
         let lod = &mut c.lod;
-        if mode.tpersp_st() {
+        // With `lodmin` at or above `lodmax` (one level) the clamp below gives `lodmin`
+        // whatever the W term and the dither add: neither is computed.
+        let one_lod = lo >= hi;
+        if mode.tpersp_st() && !one_lod {
             let w = &c.w;
             match profile.lod {
                 LodCalc::Mame => w_terms(w, n, lod_from, lod, |w| lod::w_term(LodCalc::Mame, w)),
@@ -353,7 +356,7 @@ impl Tmu {
         for v in lod[..n].iter_mut() {
             *v = v.wrapping_add(base);
         }
-        if mode.tloddither() && profile.lod_dither == LodDither::Matrix4x4 {
+        if mode.tloddither() && profile.lod_dither == LodDither::Matrix4x4 && !one_lod {
             // Source: MAME `fetch_texel`, DOSBox `TEXTURE_PIPELINE` (as `lod::pixel_lod`).
             let row = &DITHER_4X4[(y & 3) as usize];
             for (i, v) in lod[..n].iter_mut().enumerate() {
