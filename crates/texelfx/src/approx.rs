@@ -105,7 +105,9 @@ fn f32_to_i32(q: f32, floor: bool) -> i32 {
     // the low end (`max` returns the number when one side is NaN).
     const HI: f32 = 2_147_483_520.0;
     const LO: f32 = -2_147_483_648.0;
-    let in_range = q >= LO && q < 2_147_483_648.0;
+    let in_range = (LO..2_147_483_648.0).contains(&q);
+    // Not `clamp`: it passes NaN through, which `to_int_unchecked` must not see.
+    #[allow(clippy::manual_clamp)]
     let c = q.max(LO).min(HI);
     // SAFETY: `c` is a number (not NaN) in `LO..=HI`, whose truncation fits an i32. (The
     // saturating `c as i32` does not vectorise: its NaN and range tests stay scalar.)
