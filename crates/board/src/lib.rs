@@ -14,6 +14,7 @@
 mod box86;
 mod bus;
 mod diagnostics;
+pub mod method;
 pub mod model;
 pub mod presets;
 pub mod reference;
@@ -26,6 +27,7 @@ use serde::{Deserialize, Serialize};
 
 pub use bus::aperture_offset;
 pub use diagnostics::{Diagnostic, Diagnostics};
+pub use method::Method;
 pub use model::Model;
 pub use pixelfx::{PathCounts, PixelProfile, Stats};
 pub use reference::{vote, Reference};
@@ -196,6 +198,16 @@ impl Board {
         self.fbi.set_generic_path(on);
         for t in &mut self.tmus {
             t.set_generic_path(on);
+        }
+    }
+
+    /// Choose how to draw ([`Method`]): the exact fast path (the default), the exact
+    /// generic path ([`Board::set_generic_path`]), or an approximation of the fast path
+    /// that trades exactness for speed. Replaces any earlier `set_generic_path` choice.
+    pub fn set_method(&mut self, method: Method) {
+        self.set_generic_path(method == Method::Reference);
+        for t in &mut self.tmus {
+            t.set_approx(method.approx());
         }
     }
 

@@ -1,7 +1,8 @@
 //! Differential test of the span kernels (`pixelfx::span`, the fast path) against the
 //! generic path (the reference path, pixel by pixel: `Board::set_generic_path(true)`):
-//! every conformance, glide-sdk, example and generated trace is replayed both ways with
-//! the default profile, and the conformance, glide-sdk and generated ones again with each
+//! every conformance, glide-sdk, example, generated and stability trace is replayed both
+//! ways with the default profile, and the conformance, glide-sdk, generated and stability
+//! ones again with each
 //! reference emulator's profile; every dump the trace takes, the final
 //! front, back and aux buffers and the statistics counters must be bit-identical.
 //!
@@ -187,6 +188,20 @@ fn example_traces_identical() {
 fn generated_traces_identical() {
     let paths = traces("generated", |_| true);
     assert_eq!(paths.len(), 2);
+    check_all(&paths);
+    for reference in Reference::ALL {
+        check_all_with(&paths, reference.profile(), &[1, 2]);
+    }
+}
+
+/// The stability scenes (`traces/stability`, `sst1_trace::scenes::stability`): ten
+/// families, each sweeping one number (width, size, W, depth, gradient, LOD, run length)
+/// to where arithmetic breaks. The approximate methods break on them; the exact fast path
+/// must not, for the hardware model and each reference model.
+#[test]
+fn stability_traces_identical() {
+    let paths = traces("stability", |_| true);
+    assert_eq!(paths.len(), 10);
     check_all(&paths);
     for reference in Reference::ALL {
         check_all_with(&paths, reference.profile(), &[1, 2]);

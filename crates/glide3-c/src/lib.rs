@@ -25,6 +25,9 @@
 //! * `VOODOO_FBI_MB`, `VOODOO_TMUS`, `VOODOO_TMU_MB`: the board (default 4, 1, 4).
 //! * `VOODOO_MODEL`: the model of the board, `hardware` (the default) or a reference
 //!   emulator's, `mame`, `dosbox-staging` or `86box` (`voodoo replay --model`).
+//! * `VOODOO_METHOD`: how the board draws (`voodoo replay --method`): `exact` (the
+//!   default), `reference`, or an approximation that trades exactness for speed,
+//!   `nearest`, `lod-per-chunk`, `float-divide` or `fastest` (docs/methods.md).
 //! * `VOODOO_THREADS=N`: render threads for large untextured triangles (default: the
 //!   machine's cores; `voodoo replay --threads`). The pixels are the same for every N.
 //! * `VOODOO_SAVE_STATE=path`: save the whole board (`sst1_board::state`) at
@@ -43,7 +46,7 @@
 
 use glide::consts::*;
 use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
-use sst1_board::{AccuracyProfile, Board, BoardConfig, BufferKind, Reference};
+use sst1_board::{AccuracyProfile, Board, BoardConfig, BufferKind, Method, Reference};
 use sst1_regs::RegisterBus;
 use sst1_trace::{DumpBuffer, Recorder, TraceWriter};
 use std::borrow::Cow;
@@ -405,6 +408,22 @@ fn model_profile() -> AccuracyProfile {
     }
 }
 
+/// The method `VOODOO_METHOD` names ([`Method::name`]); unset is the exact fast path.
+/// Any other value is said once on stderr and the exact fast path runs.
+fn draw_method() -> Method {
+    let Ok(name) = std::env::var("VOODOO_METHOD") else {
+        return Method::Exact;
+    };
+    Method::from_name(name.trim()).unwrap_or_else(|| {
+        let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
+        eprintln!(
+            "glide3: VOODOO_METHOD={name:.40} is not one of {}; drawing exactly",
+            names.join(", ")
+        );
+        Method::Exact
+    })
+}
+
 /// `VOODOO_THREADS`, or the machine's cores; a value that is not a number counts as
 /// unset, and at most 256 threads are used.
 fn render_threads() -> usize {
@@ -566,6 +585,7 @@ pub extern "C" fn grGlideInit() {
             let cfg = board_config();
             let mut board = Board::new(cfg);
             board.set_profile(model_profile());
+            board.set_method(draw_method());
             board.set_threads(render_threads());
             let board = SharedBoard(Rc::new(RefCell::new(board)));
             let recording = Recording::from_env(&board, cfg);

@@ -21,6 +21,7 @@
 //!
 //! Where the reference emulators disagree, [`TexelProfile`] selects the behaviour.
 
+mod approx;
 mod box86;
 mod cache;
 pub mod combine;
@@ -32,6 +33,7 @@ mod sample;
 mod span;
 mod state;
 
+pub use approx::Approx;
 use cache::TexelCache;
 pub use combine::DetailRule;
 use combine::{detail_factor, Factors, TextureCombine};
@@ -455,6 +457,8 @@ pub struct Tmu {
     lanes: Option<Box<span::Chunk>>,
     /// Lane outputs of [`Tmu::texels_kept`], kept for the next TMU down the chain.
     kept: Option<Box<ColourLanes>>,
+    /// The span kernels' approximations in force ([`Tmu::set_approx`]; none by default).
+    approx: Approx,
 }
 
 /// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero
@@ -498,6 +502,7 @@ impl Tmu {
             cached: true,
             lanes: None,
             kept: None,
+            approx: Approx::EXACT,
         }
     }
 
@@ -523,6 +528,17 @@ impl Tmu {
     pub fn set_generic_path(&mut self, on: bool) {
         self.cached = !on;
         self.cache.clear();
+    }
+
+    /// Choose the span kernels' approximations (module `approx`; [`Approx::EXACT`], the
+    /// default, is none). The per-pixel path ignores them.
+    pub fn set_approx(&mut self, approx: Approx) {
+        self.approx = approx;
+    }
+
+    /// The span kernels' approximations in force.
+    pub fn approx(&self) -> Approx {
+        self.approx
     }
 
     /// The behaviour switches in use.

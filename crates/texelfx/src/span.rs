@@ -162,14 +162,24 @@ impl Tmu {
         }
         let mut c = self.lanes.take().unwrap_or_else(Chunk::new);
         self.iterate_lanes(dx0, dy, n, &mut c);
+        // The approximations (module `approx`), read once per chunk; all off is exact.
+        let approx = self.approx;
         coords_lanes(
             TextureMode(self.texture_mode),
             profile.persp_divide,
             profile.coord_rounding,
+            approx.float_divide,
             n,
             &mut c,
         );
-        self.lod_lanes::<M>(x0, y, n, &mut c);
+        let lod_from = approx
+            .lod_per_chunk
+            .then(|| alive[..n].iter().position(|&a| a).unwrap_or(0));
+        self.lod_lanes::<M>(x0, y, n, lod_from, &mut c);
+        if approx.point_sampling {
+            // `textureMode`'s filter bits read as point sampling (what `Approx` says).
+            c.point[..n].fill(1);
+        }
         self.fetch_lanes::<M>(alive, n, &mut c);
 
         let zero_frac =
@@ -298,9 +308,17 @@ impl Tmu {
     }
 
     /// Stage 3: the LOD of each lane, its level, parity and filter (as [`Tmu::sample`]
-    /// and [`lod::pixel_lod`]).
+    /// and [`lod::pixel_lod`]); with `lod_from` ([`crate::Approx::lod_per_chunk`]), the
+    /// LOD of that lane (its W term computed once) for all of them.
     #[inline(always)]
-    fn lod_lanes<M: TexelModel>(&self, x0: i32, y: i32, n: usize, c: &mut Chunk) {
+    fn lod_lanes<M: TexelModel>(
+        &self,
+        x0: i32,
+        y: i32,
+        n: usize,
+        lod_from: Option<usize>,
+        c: &mut Chunk,
+    ) {
         let profile = M::texel(&self.profile);
         let mode = TextureMode(self.texture_mode);
         let tl = TLod(self.t_lod);
@@ -313,15 +331,23 @@ impl Tmu {
         // UNVERIFIED (as `lod::pixel_lod`): lodmax capped at 8.0.
         let hi = ((tl.lodmax() << 6) as i32).min(0x800);
         let lod = &mut c.lod;
-        if mode.tpersp_st() {
+        // With `lodmin` at or above `lodmax` (one level) the clamp below gives `lodmin`
+        // whatever the W term and the dither add: neither is computed.
+        let one_lod = lo >= hi;
+        if mode.tpersp_st() && !one_lod {
+            let w = &c.w;
             match profile.lod {
-                LodCalc::Mame => w_terms(&c.w, n, lod, |w| lod::w_term(LodCalc::Mame, w)),
+                LodCalc::Mame => w_terms(w, n, lod_from, lod, |w| lod::w_term(LodCalc::Mame, w)),
+                // `Approx::float_divide`: the W term from the single-precision W.
+                LodCalc::Dosbox if self.approx.float_divide => {
+                    w_terms(w, n, lod_from, lod, crate::approx::w_log_f32)
+                }
                 LodCalc::Dosbox => {
                     // Source: DOSBox Staging `TEXTURE_PIPELINE` (as `lod::w_term`).
                     let table = lod::reciplog_table();
-                    w_terms(&c.w, n, lod, |w| lod::reciplog_log(table, w))
+                    w_terms(w, n, lod_from, lod, |w| lod::reciplog_log(table, w))
                 }
-                LodCalc::Box86 => w_terms(&c.w, n, lod, |w| lod::w_term(LodCalc::Box86, w)),
+                LodCalc::Box86 => w_terms(w, n, lod_from, lod, |w| lod::w_term(LodCalc::Box86, w)),
             }
         } else {
             lod[..n].fill(0);
@@ -330,7 +356,7 @@ impl Tmu {
         for v in lod[..n].iter_mut() {
             *v = v.wrapping_add(base);
         }
-        if mode.tloddither() && profile.lod_dither == LodDither::Matrix4x4 {
+        if mode.tloddither() && profile.lod_dither == LodDither::Matrix4x4 && !one_lod {
             // Source: MAME `fetch_texel`, DOSBox `TEXTURE_PIPELINE` (as `lod::pixel_lod`).
             let row = &DITHER_4X4[(y & 3) as usize];
             for (i, v) in lod[..n].iter_mut().enumerate() {
@@ -341,6 +367,11 @@ impl Tmu {
         // A lodmin above lodmax gives lodmin (as `lod::pixel_lod`).
         for v in lod[..n].iter_mut() {
             *v = (*v).min(hi).max(lo);
+        }
+        if let Some(from) = lod_from {
+            // `Approx::lod_per_chunk`: that lane's whole LOD, dither included, for all.
+            let v = lod[from % LANES];
+            lod[..n].fill(v);
         }
         let lodmask = self.layout.lodmask as i32;
         for i in 0..n {
@@ -565,20 +596,34 @@ fn neighbour_lanes(c: i32, max: i32, clamp: bool) -> (u32, u32) {
     ((c0 & max) as u32, (c1 & max) as u32)
 }
 
-/// `lod[i] = term(w[i])` for the first `n` lanes.
+/// `lod[i] = term(w[i])` for the first `n` lanes, or `term(w[from])` in all of them
+/// ([`crate::Approx::lod_per_chunk`]).
 #[inline(always)]
-fn w_terms(w: &[i64; LANES], n: usize, lod: &mut Lanes, term: impl Fn(i64) -> i32) {
+fn w_terms(
+    w: &[i64; LANES],
+    n: usize,
+    from: Option<usize>,
+    lod: &mut Lanes,
+    term: impl Fn(i64) -> i32,
+) {
+    if let Some(from) = from {
+        lod[..n].fill(term(w[from % LANES]));
+        return;
+    }
     for (v, &w) in lod[..n].iter_mut().zip(&w[..n]) {
         *v = term(w);
     }
 }
 
 /// Stage 2: the 24.8 texture coordinates of each lane and `tclampw` (as [`Tmu::sample`]).
+/// With `float_divide` ([`crate::Approx::float_divide`]) the perspective divide is
+/// `approx::coords_f32`'s.
 #[inline(always)]
 fn coords_lanes(
     mode: TextureMode,
     divide: PerspDivide,
     rounding: CoordRounding,
+    float_divide: bool,
     n: usize,
     c: &mut Chunk,
 ) {
@@ -586,6 +631,7 @@ fn coords_lanes(
     let (s, t, w) = (&c.s, &c.t, &c.w);
     let (cs, ct) = (&mut c.cs, &mut c.ct);
     match (mode.tpersp_st(), divide) {
+        (true, _) if float_divide => crate::approx::coords_f32((s, t, w), n, floor, cs, ct),
         (true, PerspDivide::DosboxReciprocal) => {
             let table = lod::reciplog_table();
             for i in 0..n {

@@ -5,6 +5,9 @@
 //! * [`small_triangles`]: N triangles of about 10 pixels each, Gouraud-shaded, or
 //!   textured (bilinear, perspective-correct, mipmapped RGB565 modulated by the iterated
 //!   colour).
+//! * [`stability`]: families of textured scenes that sweep one number towards where
+//!   arithmetic breaks (thin, huge, extreme W, depth and gradient limits, LOD extremes,
+//!   long iterator runs), one dump per step.
 //! * [`random_states`]: triangles of random size, each group in a random drawing state:
 //!   every bit of `fbzColorPath`, `alphaMode`, `fogMode` and `fbzMode` the FBI stores
 //!   (`sst1_regs::map::mask_of`) drawn at random, and per TMU every bit of
@@ -23,6 +26,8 @@
 //! texture downloads (spec section 8: bits 22:21 the TMU, 20:17 the LOD, 16:9 T, S below)
 //! and triangles through the fixed-point registers (vertices sorted by Y, start values at
 //! vertex A, gradients from the plane equation, `triangleCMD` bit 31 the area's sign).
+
+pub mod stability;
 
 use std::fmt::Write as _;
 

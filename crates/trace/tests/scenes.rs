@@ -6,18 +6,21 @@
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
-use sst1_trace::scenes::{random_states, small_triangles, RandomStates};
+use sst1_trace::scenes::{random_states, small_triangles, stability, RandomStates};
 
 fn generated_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces/generated")
 }
 
-/// Each checked-in file and the text its generator writes now.
-fn expected() -> Vec<(&'static str, String)> {
-    vec![
-        ("small_tris.trace.gz", small_triangles(1, 2000, false)),
+/// Each checked-in file (under `traces/`) and the text its generator writes now.
+fn expected() -> Vec<(String, String)> {
+    let mut files = vec![
         (
-            "random_states.trace.gz",
+            "generated/small_tris.trace.gz".to_owned(),
+            small_triangles(1, 2000, false),
+        ),
+        (
+            "generated/random_states.trace.gz".to_owned(),
             random_states(RandomStates {
                 seed: 1,
                 tmus: 2,
@@ -25,14 +28,22 @@ fn expected() -> Vec<(&'static str, String)> {
                 ..RandomStates::default()
             }),
         ),
-    ]
+    ];
+    // `voodoo gen stability --family NAME --out traces/stability/NAME.trace.gz`.
+    for f in &stability::FAMILIES {
+        files.push((
+            format!("stability/{}.trace.gz", f.name),
+            stability::scene(f),
+        ));
+    }
+    files
 }
 
 #[test]
 fn generated_traces_match_their_generators() {
     let bless = std::env::var_os("VOODOO_BLESS").is_some();
     for (file, text) in expected() {
-        let path = generated_dir().join(file);
+        let path = generated_dir().join("..").join(file);
         if bless {
             let mut gz = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
             gz.write_all(text.as_bytes()).unwrap();

@@ -15,7 +15,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use sst1_board::{Board, Stats};
+use sst1_board::{Board, Method, Stats};
 use sst1_trace::scenes::{self, RandomStates};
 use sst1_trace::{execute, load_trace, read_trace, Trace};
 
@@ -43,6 +43,12 @@ pub struct Options {
     pub trace_dir: Option<PathBuf>,
     /// Render threads of the extra fast-path row (none when 1).
     pub threads: usize,
+    /// Also run every approximate method (`sst1_board::Method`) on one thread, a row each
+    /// with its speed-up over the fast path.
+    pub methods: bool,
+    /// Write the chart of every method on every trace into this folder instead
+    /// (module `chart`).
+    pub chart: Option<PathBuf>,
 }
 
 /// One scene to run: its name and ops.
@@ -78,7 +84,7 @@ impl Timing {
 /// nanosecond on Linux), else the first field of `/proc/thread-self/schedstat` (what
 /// `crates/board/benches/replay.rs` reads; it advances only at scheduler ticks, a few
 /// milliseconds, so it suits long replays only).
-fn thread_cpu_time() -> Option<Duration> {
+pub(crate) fn thread_cpu_time() -> Option<Duration> {
     let mut ts = libc::timespec {
         tv_sec: 0,
         tv_nsec: 0,
@@ -119,6 +125,8 @@ enum Run {
     Reference,
     /// The fast path on this many render threads.
     Fast(usize),
+    /// An approximate method, one thread.
+    Approx(Method),
 }
 
 /// Replays `trace` once on a fresh board.
@@ -127,6 +135,10 @@ fn run_once(trace: &Trace, run: Run) -> (Timing, Stats) {
     match run {
         Run::Reference => board.set_generic_path(true),
         Run::Fast(threads) => board.set_threads(threads),
+        Run::Approx(method) => {
+            board.set_method(method);
+            board.set_threads(1);
+        }
     }
     let cpu0 = thread_cpu_time();
     let start = Instant::now();
@@ -244,6 +256,14 @@ fn stem(path: &Path) -> String {
 
 /// Runs `voodoo bench`.
 pub fn bench(o: &Options) -> Result<(), String> {
+    if let Some(dir) = &o.chart {
+        return crate::chart::chart(&crate::chart::ChartOptions {
+            dir,
+            root: Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces"),
+            given: &o.traces,
+            iters: o.iters,
+        });
+    }
     let scenes = if o.traces.is_empty() {
         default_scenes(o)?
     } else {
@@ -273,7 +293,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
             ))
         );
         println!(
-            "{:<34} {:<9} {:>9} {:>9} {:>8} {:>8} {:>9} {:>11} {:>9}",
+            "{:<34} {:<13} {:>9} {:>9} {:>8} {:>8} {:>9} {:>11} {:>9}",
             "scene",
             "path",
             "Mpix/s",
@@ -289,7 +309,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
     let mut all_match = true;
     for scene in &scenes {
         let (t, s) = best_of(&scene.trace, Run::Fast(1), o.iters);
-        let fast = PathResult {
+        let mut fast = PathResult {
             timing: t,
             stats: s,
         };
@@ -305,6 +325,45 @@ pub fn bench(o: &Options) -> Result<(), String> {
                 stats: s,
             }
         });
+        let approx: Vec<(Method, PathResult)> = if o.methods {
+            // Rounds of the fast path and each method in turn, the fastest of each kept,
+            // so that a change in the machine's load falls on all of them alike; the
+            // fast row becomes the fastest of its runs in both loops.
+            let methods: Vec<Method> = Method::ALL.into_iter().filter(|m| !m.is_exact()).collect();
+            let mut best: Vec<Option<(Timing, Stats)>> = vec![None; methods.len()];
+            for _ in 0..o.iters.max(1) {
+                let (t, s) = run_once(&scene.trace, Run::Fast(1));
+                if t.key() < fast.timing.key() {
+                    fast = PathResult {
+                        timing: t,
+                        stats: s,
+                    };
+                }
+                for (slot, &m) in best.iter_mut().zip(&methods) {
+                    let (t, s) = run_once(&scene.trace, Run::Approx(m));
+                    if slot.map_or(true, |(b, _)| t.key() < b.key()) {
+                        *slot = Some((t, s));
+                    }
+                }
+            }
+            methods
+                .into_iter()
+                .zip(best)
+                .filter_map(|(m, b)| {
+                    b.map(|(t, s)| {
+                        (
+                            m,
+                            PathResult {
+                                timing: t,
+                                stats: s,
+                            },
+                        )
+                    })
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         let speedup = reference.secs() / fast.secs();
         // Threads against one thread, both by the wall clock.
         let thread_speedup = threaded
@@ -326,6 +385,11 @@ pub fn bench(o: &Options) -> Result<(), String> {
                 "threads": o.threads,
                 "threaded": threaded.as_ref().map(|t| t.json(hz)),
                 "thread_speedup_wall": thread_speedup,
+                "methods": approx.iter().map(|(m, r)| serde_json::json!({
+                    "method": m.name(),
+                    "result": r.json(hz),
+                    "speedup_over_fast": fast.secs() / r.secs(),
+                })).collect::<Vec<_>>(),
                 "counters_match": same,
             }));
         } else {
@@ -339,6 +403,9 @@ pub fn bench(o: &Options) -> Result<(), String> {
             if let (Some(t), Some(up)) = (&threaded, thread_speedup) {
                 rows.push((threads_label.as_str(), t, format!("{up:.2}x/1")));
             }
+            for (m, r) in &approx {
+                rows.push((m.name(), r, format!("{:.2}x/f", fast.secs() / r.secs())));
+            }
             for (label, r, up) in rows {
                 let name = if label == "fast" {
                     scene.name.as_str()
@@ -346,7 +413,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
                     ""
                 };
                 println!(
-                    "{:<34} {:<9} {:>9.2} {:>9.4} {:>8.2} {:>8} {:>9} {:>11} {:>9}",
+                    "{:<34} {:<13} {:>9.2} {:>9.4} {:>8.2} {:>8} {:>9} {:>11} {:>9}",
                     name,
                     label,
                     r.mpix(),

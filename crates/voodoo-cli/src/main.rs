@@ -9,6 +9,8 @@
 //! `sst1_trace::output`); dumps go to a fresh folder unless `--out` names one.
 
 mod bench;
+mod chart;
+mod plot;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -16,7 +18,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use sst1_board::{AccuracyProfile, Board, BufferKind, Reference};
+use sst1_board::{AccuracyProfile, Board, BufferKind, Method, Reference};
 use sst1_regs::map;
 use sst1_trace::judge;
 use sst1_trace::text::parse_number;
@@ -97,6 +99,11 @@ enum Command {
         /// `--profile` and `--no-timing` are refused with it.
         #[arg(long, value_name = "FILE")]
         resume: Option<PathBuf>,
+        /// How to draw (one-board models only): `exact`, the default, and `reference` are
+        /// the exact paths (span kernels; pixel by pixel); the others approximate the
+        /// texture stages for speed, each giving up what its line says (docs/methods.md).
+        #[arg(long, value_enum, value_name = "NAME")]
+        method: Option<MethodArg>,
     },
     /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
     /// against reference emulators' goldens with the conformance pass rule: every pixel
@@ -156,6 +163,11 @@ enum Command {
         /// drawn at random, so buffers may overlap.
         #[arg(long)]
         layout: bool,
+        /// The family of a stability scene (stability): thin, large, w_near_zero,
+        /// w_near_two, persp, depth_z, depth_w, gradients, lod or long_runs
+        /// (`sst1_trace::scenes::stability`).
+        #[arg(long, value_name = "NAME")]
+        family: Option<String>,
         /// Output file (replaced through a temporary file); default stdout.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -189,6 +201,18 @@ enum Command {
         /// the machine's cores; 1 leaves the row out.
         #[arg(long, value_name = "N")]
         threads: Option<usize>,
+        /// Also run each approximate method (`--method` of `replay`) on one thread, a row
+        /// each, with its speed-up over the fast path (`x/f`).
+        #[arg(long)]
+        methods: bool,
+        /// Instead: replay every trace of the repository (or the TRACES given) with every
+        /// method and write into DIR the table (table.md, .csv, .json: Mpix/s, speed-up,
+        /// share of pixels identical to `exact`, PSNR, largest channel error), the
+        /// stability families' errors per step (stability.md, .csv) and PNG charts
+        /// (speed_vs_accuracy, error_histogram, error_map, stability). `--iters` runs
+        /// per method (1 for a quick chart).
+        #[arg(long, value_name = "DIR")]
+        chart: Option<PathBuf>,
     },
     /// Convert a trace between the text and binary forms, chosen by OUT's extension:
     /// `.vtrace` binary, `.vtrace.gz` gzip binary, `.gz` gzip text, anything else text.
@@ -209,6 +233,41 @@ enum SceneKind {
     SmallTexTris,
     /// Triangles of random size in random drawing states.
     RandomStates,
+    /// A family of stability scenes (`--family`): one parameter swept towards where
+    /// arithmetic breaks, one dump per step.
+    Stability,
+}
+
+/// How a replay draws: `sst1_board::Method`, spelled as its `name()`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum MethodArg {
+    /// Exact fast path: the span kernels (the default).
+    Exact,
+    /// Exact generic path: pixel by pixel, every register read per pixel.
+    Reference,
+    /// Approximate: point sampling instead of bilinear (loses the 4-bit filter fractions).
+    Nearest,
+    /// Approximate: the LOD once per chunk of up to 64 pixels of a span (loses the LOD's
+    /// change along it).
+    LodPerChunk,
+    /// Approximate: the perspective divide in single precision (24-bit mantissa: texel
+    /// coordinates move where S/W is large).
+    FloatDivide,
+    /// Approximate: nearest, lod-per-chunk and float-divide together.
+    Fastest,
+}
+
+impl From<MethodArg> for Method {
+    fn from(m: MethodArg) -> Method {
+        match m {
+            MethodArg::Exact => Method::Exact,
+            MethodArg::Reference => Method::Reference,
+            MethodArg::Nearest => Method::Nearest,
+            MethodArg::LodPerChunk => Method::LodPerChunk,
+            MethodArg::FloatDivide => Method::FloatDivide,
+            MethodArg::Fastest => Method::Fastest,
+        }
+    }
 }
 
 /// The model of the board a replay runs.
@@ -271,9 +330,13 @@ fn main() -> ExitCode {
             no_timing,
             save_at,
             resume,
+            method,
         } => resolve_model(model, profile.as_deref()).and_then(|resolved| {
             if no_timing && resolved.is_none() {
                 return Err("--no-timing needs a one-board model (not --model vote)".into());
+            }
+            if method.is_some() && resolved.is_none() {
+                return Err("--method needs a one-board model (not --model vote)".into());
             }
             if (save_at.is_some() || resume.is_some()) && resolved.is_none() {
                 return Err(
@@ -303,7 +366,11 @@ fn main() -> ExitCode {
                 png.as_deref(),
                 stats,
                 stats_json.as_deref(),
-                resolved.map(|p| (p, !no_timing)),
+                resolved.map(|p| OneBoard {
+                    profile: p,
+                    timing: !no_timing,
+                    method: method.map_or(Method::Exact, Method::from),
+                }),
                 threads.unwrap_or_else(default_threads),
                 session,
             )
@@ -325,8 +392,17 @@ fn main() -> ExitCode {
             count,
             tmus,
             layout,
+            family,
             out,
-        } => gen(scene, seed, count, tmus, layout, out.as_deref()),
+        } => gen(
+            scene,
+            seed,
+            count,
+            tmus,
+            layout,
+            family.as_deref(),
+            out.as_deref(),
+        ),
         Command::Bench {
             traces,
             iters,
@@ -335,8 +411,12 @@ fn main() -> ExitCode {
             states,
             trace_dir,
             threads,
+            methods,
+            chart,
         } => bench::bench(&bench::Options {
             threads: threads.unwrap_or_else(default_threads),
+            methods,
+            chart,
             traces,
             iters,
             json,
@@ -440,6 +520,26 @@ fn load_state(path: &Path) -> Result<(Board, u64), String> {
     Ok((board, done))
 }
 
+/// How one board of a replay is set up.
+#[derive(Clone, Copy)]
+struct OneBoard {
+    profile: AccuracyProfile,
+    /// The timing model on.
+    timing: bool,
+    method: Method,
+}
+
+impl OneBoard {
+    /// `profile` with the timing model and the exact fast path.
+    fn exact(profile: AccuracyProfile) -> Self {
+        Self {
+            profile,
+            timing: true,
+            method: Method::Exact,
+        }
+    }
+}
+
 /// What a replay leaves: a board to report on and the front buffer.
 struct Replayed {
     /// The board (with the reference vote: the MAME-profile board).
@@ -453,7 +553,7 @@ struct Replayed {
 /// to `sink` when it is reached, with a progress counter when stderr is a terminal.
 fn run(
     stream: TraceStream<'_>,
-    profile: Option<(AccuracyProfile, bool)>,
+    profile: Option<OneBoard>,
     threads: usize,
     session: Session<'_>,
     mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
@@ -470,7 +570,7 @@ fn run(
     let progress = |done: usize| bar.set_position(done as u64);
     let config = stream.config();
     let replayed = match profile {
-        Some((profile, timing)) => {
+        Some(one) => {
             let mut stream = stream;
             let (mut board, skip) = match session.from {
                 Some((board, done)) => {
@@ -485,12 +585,15 @@ fn run(
                 }
                 None => {
                     let mut board = Board::new(config);
-                    board.set_profile(profile);
-                    board.set_timing(timing);
+                    board.set_profile(one.profile);
+                    board.set_timing(one.timing);
                     (board, 0)
                 }
             };
             board.set_threads(threads);
+            // The method is how this replay draws, not board state: a resumed board
+            // takes this replay's.
+            board.set_method(one.method);
             // The ops the state had run.
             let mut skipped = 0;
             for op in stream
@@ -686,7 +789,7 @@ fn replay(
     png: Option<&Path>,
     stats: bool,
     stats_json: Option<&Path>,
-    profile: Option<(AccuracyProfile, bool)>,
+    profile: Option<OneBoard>,
     threads: usize,
     session: Session<'_>,
 ) -> Result<(), String> {
@@ -786,7 +889,7 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     let (mut consensus, mut majority, mut judged, mut unjudged) = (0, 0, 0, 0);
     run(
         stream,
-        profile.map(|p| (p, true)),
+        profile.map(OneBoard::exact),
         default_threads(),
         Session::default(),
         |dump| {
@@ -846,7 +949,7 @@ fn demo(png: &Path) -> Result<(), String> {
     let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
     let replayed = run(
         stream,
-        Some((AccuracyProfile::default(), true)),
+        Some(OneBoard::exact(AccuracyProfile::default())),
         default_threads(),
         Session::default(),
         |_| Ok(()),
@@ -957,10 +1060,30 @@ fn gen(
     count: Option<u32>,
     tmus: u32,
     layout: bool,
+    family: Option<&str>,
     out: Option<&Path>,
 ) -> Result<(), String> {
     use sst1_trace::scenes;
     let text = match scene {
+        SceneKind::Stability => {
+            let names = || {
+                scenes::stability::FAMILIES
+                    .iter()
+                    .map(|f| f.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            let name =
+                family.ok_or_else(|| format!("stability needs --family: one of {}", names()))?;
+            let f = scenes::stability::family(name).ok_or_else(|| {
+                format!(
+                    "--family {}: not a stability family ({})",
+                    quote(name),
+                    names()
+                )
+            })?;
+            scenes::stability::scene(f)
+        }
         SceneKind::SmallTris => scenes::small_triangles(seed, count.unwrap_or(20000), false),
         SceneKind::SmallTexTris => scenes::small_triangles(seed, count.unwrap_or(20000), true),
         SceneKind::RandomStates => {

@@ -480,3 +480,131 @@ fn bench_reports_both_paths() {
     assert!(scene["threaded"].is_null(), "{json}");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// `--method`: the exact methods draw the same pixels, an approximation on a textured
+/// scene does not, and a wrong name or the vote is refused; `gen stability` writes a
+/// family or names them; `bench --methods` and `--chart` on a tiny scene.
+#[test]
+fn methods_stability_scenes_and_chart() {
+    let dir = scratch("methods");
+    stdout(&voodoo(
+        &dir,
+        &[
+            "gen",
+            "small-tex-tris",
+            "--count",
+            "40",
+            "--out",
+            "tex.trace",
+        ],
+    ));
+    let mut fronts = Vec::new();
+    for method in ["exact", "reference", "nearest"] {
+        stdout(&voodoo(
+            &dir,
+            &[
+                "replay",
+                "tex.trace",
+                "--method",
+                method,
+                "--out",
+                method,
+                "--threads",
+                "1",
+            ],
+        ));
+        fronts.push(std::fs::read(dir.join(method).join("small_triangles_front.raw")).unwrap());
+    }
+    assert_eq!(fronts[0], fronts[1]);
+    assert_ne!(fronts[0], fronts[2]);
+    let bad = voodoo(&dir, &["replay", "tex.trace", "--method", "bilinear"]);
+    assert!(!bad.status.success());
+    let vote = voodoo(
+        &dir,
+        &[
+            "replay",
+            "tex.trace",
+            "--method",
+            "nearest",
+            "--model",
+            "vote",
+        ],
+    );
+    assert!(!vote.status.success());
+    assert!(
+        String::from_utf8_lossy(&vote.stderr).contains("--method needs a one-board model"),
+        "{}",
+        String::from_utf8_lossy(&vote.stderr)
+    );
+    let help = stdout(&voodoo(&dir, &["replay", "--help"]));
+    for name in ["lod-per-chunk", "float-divide", "fastest"] {
+        assert!(help.contains(name), "{help}");
+    }
+
+    let missing = voodoo(&dir, &["gen", "stability"]);
+    assert!(!missing.status.success());
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("thin, large, w_near_zero"));
+    let wrong = voodoo(&dir, &["gen", "stability", "--family", "nope"]);
+    assert!(!wrong.status.success());
+    let text = stdout(&voodoo(&dir, &["gen", "stability", "--family", "thin"]));
+    assert!(text.starts_with("# stability family thin: "), "{text}");
+    assert_eq!(
+        text.lines()
+            .filter(|l| l.starts_with("dump front thin_"))
+            .count(),
+        6
+    );
+
+    let out = stdout(&voodoo(
+        &dir,
+        &[
+            "bench",
+            "--iters",
+            "1",
+            "--threads",
+            "1",
+            "--methods",
+            "tex.trace",
+        ],
+    ));
+    let paths: Vec<&str> = out
+        .lines()
+        .skip(2)
+        .map(|l| {
+            l.split_whitespace()
+                .nth(usize::from(l.starts_with("tex")))
+                .unwrap_or("")
+        })
+        .collect();
+    assert_eq!(
+        paths,
+        [
+            "fast",
+            "reference",
+            "nearest",
+            "lod-per-chunk",
+            "float-divide",
+            "fastest"
+        ],
+        "{out}"
+    );
+
+    let out = stdout(&voodoo(
+        &dir,
+        &["bench", "--iters", "1", "--chart", "chart", "tex.trace"],
+    ));
+    assert!(out.contains("(1 traces, 6 methods)"), "{out}");
+    let table = std::fs::read_to_string(dir.join("chart/table.md")).unwrap();
+    assert_eq!(table.lines().count(), 2 + 6, "{table}");
+    assert!(table.contains("| given | `tex` | reference |"), "{table}");
+    for png in [
+        "speed_vs_accuracy.png",
+        "error_histogram.png",
+        "stability.png",
+        "error_map.png",
+    ] {
+        let image = image::open(dir.join("chart").join(png)).unwrap();
+        assert!(image.width() > 100, "{png}");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
