@@ -262,8 +262,9 @@ fn kill_where<const L: usize>(
 
 /// `v` through an opaque identity: for a reference chosen once per chunk among several
 /// arrays, it keeps the compiler from turning that one choice into an address choice
-/// per lane, which does not vectorise (measured: a third of the Gouraud kernel's
-/// instructions). Costs a register spill per call.
+/// per lane, which does not vectorise (measured on the first 50 triangles of
+/// perf_gouraud_heavy: 364 M instructions without it, 304 M with it). The value goes
+/// through memory once per call, per chunk, not per lane.
 #[inline(always)]
 fn chosen<T>(v: T) -> T {
     core::hint::black_box(v)
