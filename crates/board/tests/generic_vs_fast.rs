@@ -235,6 +235,25 @@ fn render_threads_take_large_untextured_triangles() {
 }
 
 #[test]
+fn render_threads_take_large_textured_triangles() {
+    // Two TMUs chained (each TMU's levels shared, `Tmu::share_levels`), and one.
+    for (name, least) in [("tmu2_combine", 500_000), ("tex_rgb565_bilinear", 50_000)] {
+        let path = traces("conformance/traces", |n| n == name);
+        let trace = load_trace(&path[0]).unwrap_or_else(|e| panic!("{e}"));
+        let mut board = Board::new(trace.board_config());
+        board.set_threads(2);
+        execute(&trace.ops, &mut board, |_| {});
+        let counts = board.path_counts();
+        assert!(counts.in_bands > least, "{name}: {counts:?}");
+        assert_eq!(
+            counts.aliased_layout + counts.reference,
+            0,
+            "{name}: {counts:?}"
+        );
+    }
+}
+
+#[test]
 #[ignore = "about 80 s in release: the texture-heavy benchmark trace, replayed four times"]
 fn slow_traces_identical() {
     let paths = traces("conformance/traces", |name| SLOW.contains(&name));

@@ -17,6 +17,21 @@ use crate::{box86, setup};
 
 /// What the TMU chain gives the FBI for one pixel.
 pub trait TexelSource {
+    /// A view of the source for one render thread ([`TexelSource::band`]).
+    type Band<'s>: TexelSource + Send
+    where
+        Self: 's;
+
+    /// Readies the source to be read from several render threads at once for the
+    /// current triangle, each through its own [`TexelSource::band`]; `false` where it
+    /// cannot be (its texels have state of their own), and the triangle is drawn on one
+    /// thread.
+    fn share(&mut self) -> bool;
+
+    /// A view for one render thread, after [`TexelSource::share`] returned `true`: it
+    /// gives every texel [`TexelSource::texels`] would.
+    fn band(&self) -> Self::Band<'_>;
+
     /// The texel for the pixel at offset `(dx, dy)` from vertex A's pixel, at screen
     /// position `(x, y)`.
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba;
@@ -57,6 +72,16 @@ pub trait TexelSource {
 pub struct NoTexture;
 
 impl TexelSource for NoTexture {
+    type Band<'s> = NoTexture;
+
+    fn share(&mut self) -> bool {
+        true
+    }
+
+    fn band(&self) -> NoTexture {
+        NoTexture
+    }
+
     #[inline]
     fn texel(&mut self, _dx: i32, _dy: i32, _x: i32, _y: i32) -> Rgba {
         Rgba::default()
@@ -134,12 +159,10 @@ impl Fbi {
             && !mode.enable_stipple_pattern();
         let mut copy = per_triangle.then(|| box86::StippleCopy::new(st.stipple));
         let consts = SPANS.then(|| TriangleConsts::new(st));
-        // Bands need rows that depend on nothing but themselves: no texel source (its
-        // caches have state) and no per-triangle stipple copy (stepped row by row).
-        let threaded = SPANS
-            && self.threads > 1
-            && copy.is_none()
-            && !(st.color_path.texture_enable() && st.fetch_texel);
+        // Bands need rows that depend on nothing but themselves: no per-triangle stipple
+        // copy (stepped row by row), and a texel source that can be shared
+        // ([`TexelSource::share`], asked once the triangle is known to be large).
+        let threaded = SPANS && self.threads > 1 && copy.is_none();
         let mut rows = Vec::new();
         for span in setup::spans(&params, profile.edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);
@@ -173,7 +196,7 @@ impl Fbi {
         }
         if threaded {
             if let Some(consts) = &consts {
-                if self.shade_rows_threaded::<M>(st, &rows, a, consts) {
+                if self.shade_rows_threaded::<M, T>(st, &rows, a, consts, tex) {
                     return;
                 }
             }
@@ -283,21 +306,24 @@ impl Fbi {
         }
     }
 
-    /// Shade `rows` (an untextured triangle's, clipped) in bands of [`BAND_ROWS`] rows
-    /// dealt round-robin to the render threads, each band with its own counters, added
-    /// up afterwards. Returns `false`, having done nothing, where that could differ from
-    /// shading the rows in order: a small triangle (not worth the threads), a row whose
+    /// Shade `rows` (a triangle's, clipped) in bands of [`BAND_ROWS`] rows dealt
+    /// round-robin to the render threads, each band with its own counters, added up
+    /// afterwards, and its own view of the texel source ([`TexelSource::band`]). Returns
+    /// `false`, having done nothing, where that could differ from shading the rows in
+    /// order: a small triangle (not worth the threads), a texel source that cannot be
+    /// shared, a row whose
     /// lanes would reach beyond the frame-buffer row (the single walk lets them run on
     /// into the next row), two rows on one frame-buffer row (the Y-origin flip wraps at
     /// 1024), or colour and aux rows that share memory. Otherwise every row
     /// touches only its own words, so the bands give the pixels and counters of the
     /// single walk whatever the thread count.
-    fn shade_rows_threaded<M: PixelModel>(
+    fn shade_rows_threaded<M: PixelModel, T: TexelSource>(
         &mut self,
         st: &DrawState,
         rows: &[Row],
         a: (i32, i32),
         consts: &TriangleConsts,
+        tex: &mut T,
     ) -> bool {
         let row_pixels = self.fb.layout.row_pixels as usize;
         let pixels: usize = rows.iter().map(|r| (r.stop - r.start) as usize).sum();
@@ -317,6 +343,9 @@ impl Fbi {
             return false;
         };
         if st.mode.y_origin() && highest - lowest >= 1024 {
+            return false;
+        }
+        if st.color_path.texture_enable() && st.fetch_texel && !tex.share() {
             return false;
         }
         let ys = rows.iter().filter(|r| r.scry >= 0).map(|r| r.scry as usize);
@@ -361,8 +390,10 @@ impl Fbi {
         let mut counters = vec![(Stats::default(), PathCounts::default()); threads];
         let (dither, fog_table, params, profile) =
             (&self.dither, &self.fog_table, &self.params, self.profile);
+        let sources: Vec<T::Band<'_>> = (0..threads).map(|_| tex.band()).collect();
         rayon::scope(|scope| {
-            for (band, (stats, counts)) in bands.into_iter().zip(counters.iter_mut()) {
+            let jobs = bands.into_iter().zip(counters.iter_mut()).zip(sources);
+            for ((band, (stats, counts)), mut source) in jobs {
                 scope.spawn(move |_| {
                     let mut shader = Shader {
                         stats,
@@ -372,7 +403,7 @@ impl Fbi {
                         params,
                         profile,
                     };
-                    shade_band_rows::<M>(&mut shader, st, band, a, consts);
+                    shade_band_rows::<M, _>(&mut shader, st, band, a, consts, &mut source);
                 });
             }
         });
@@ -423,13 +454,14 @@ struct BandRow<'m> {
 }
 
 /// The rows of a band, in order, a chunk at a time (the same chunks as
-/// [`Fbi::shade_row`]; no texel source, no per-triangle stipple copy).
-fn shade_band_rows<M: PixelModel>(
+/// [`Fbi::shade_row`]; no per-triangle stipple copy).
+fn shade_band_rows<M: PixelModel, T: TexelSource>(
     shader: &mut Shader<'_>,
     st: &DrawState,
     band: Vec<BandRow<'_>>,
     (ax, ay): (i32, i32),
     consts: &TriangleConsts,
+    tex: &mut T,
 ) {
     for BandRow { row, colour, aux } in band {
         let dy = row.y - ay;
@@ -454,13 +486,13 @@ fn shade_band_rows<M: PixelModel>(
                 Words::in_row(colour_len, x0, n),
                 Words::in_row(aux_len, x0, n),
             );
-            shader.shade_chunk_of::<M, NoTexture>(ChunkJob {
+            shader.shade_chunk_of::<M, T>(ChunkJob {
                 st,
                 at: &at,
                 it: &it,
                 stipple_state: &mut stipple,
                 copy: None,
-                tex: &mut NoTexture,
+                tex,
                 consts,
                 mem: &mut memory,
                 words,

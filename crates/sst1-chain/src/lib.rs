@@ -9,7 +9,7 @@ use core::marker::PhantomData;
 use pixelfx::span::{Lanes, LANES};
 use pixelfx::TexelSource;
 use sst1_regs::Rgba;
-use texelfx::{ChainModel, ColourLanes, LaneOutput, TexelModel, Tmu, ZERO_COLOUR};
+use texelfx::{ChainModel, ColourLanes, LaneOutput, LaneScratch, TexelModel, Tmu, ZERO_COLOUR};
 
 // The FBI's chunks are the TMUs' lanes.
 const _: () = assert!(LANES == texelfx::LANES);
@@ -37,6 +37,25 @@ impl<'a, M: TexelModel> Chain<'a, M> {
 }
 
 impl<M: TexelModel> TexelSource for Chain<'_, M> {
+    type Band<'s>
+        = SharedChain<'s, M>
+    where
+        Self: 's;
+
+    /// Shared where the chain is wired in full and every TMU can share its levels
+    /// ([`Tmu::share_levels`]; not 86Box's chain or texture cache).
+    fn share(&mut self) -> bool {
+        self.wiring == ChainModel::Full && self.tmus.iter_mut().all(|t| t.share_levels::<M>())
+    }
+
+    fn band(&self) -> SharedChain<'_, M> {
+        SharedChain {
+            tmus: self.tmus,
+            scratch: self.tmus.iter().map(|_| LaneScratch::new()).collect(),
+            model: PhantomData,
+        }
+    }
+
     #[inline]
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
         match self.tmus {
@@ -91,6 +110,85 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
                 t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other), out);
             }
         }
+    }
+}
+
+/// The chain read by one render thread ([`TexelSource::band`]): the TMUs shared, each
+/// with this thread's lanes ([`LaneScratch`]). Only a fully wired chain is shared.
+pub struct SharedChain<'a, M> {
+    tmus: &'a [Tmu],
+    /// One per TMU, in the order of `tmus`.
+    scratch: Vec<LaneScratch>,
+    /// The model is a type only: the view is `Send` whatever `M` is.
+    model: PhantomData<fn() -> M>,
+}
+
+impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
+    type Band<'s>
+        = SharedChain<'s, M>
+    where
+        Self: 's;
+
+    fn share(&mut self) -> bool {
+        true
+    }
+
+    fn band(&self) -> SharedChain<'_, M> {
+        SharedChain {
+            tmus: self.tmus,
+            scratch: self.tmus.iter().map(|_| LaneScratch::new()).collect(),
+            model: PhantomData,
+        }
+    }
+
+    /// One pixel as a chunk of one live lane (what [`SharedChain::texels`] gives it).
+    fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
+        let mut alive = [false; LANES];
+        alive[0] = true;
+        let mut out = [[0; LANES]; 4];
+        self.texels(dx, dy, x, y, &alive, 1, &mut out);
+        let ch = |c: usize| out[c][0] as u8;
+        Rgba {
+            r: ch(0),
+            g: ch(1),
+            b: ch(2),
+            a: ch(3),
+        }
+    }
+
+    /// [`Chain::texels`] of a fully wired chain, each TMU through
+    /// [`Tmu::texels_shared`].
+    #[inline(always)]
+    fn texels(
+        &mut self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        out: &mut [Lanes; 4],
+    ) {
+        let (Some((t0, upstream)), Some((s0, upstream_scratch))) =
+            (self.tmus.split_first(), self.scratch.split_first_mut())
+        else {
+            for ch in out.iter_mut() {
+                for (v, &a) in ch[..n.min(LANES)].iter_mut().zip(alive) {
+                    if a {
+                        *v = 0;
+                    }
+                }
+            }
+            return;
+        };
+        // Upstream first: the last TMU sees zero, each output feeds the next down.
+        let mut other = &ZERO_COLOUR;
+        for (t, s) in upstream.iter().zip(upstream_scratch.iter_mut()).rev() {
+            let what = LaneOutput::Combined(other);
+            other = t.texels_kept_shared::<M>(s, dx0, dy, x0, y, alive, n, what);
+        }
+        let what = LaneOutput::Combined(other);
+        t0.texels_shared::<M>(s0, dx0, dy, x0, y, alive, n, what, out);
     }
 }
 

@@ -49,6 +49,12 @@ impl TexelCache {
         self.valid >> lod & 1 != 0
     }
 
+    /// The decoded levels: bit n set when LOD n is ([`TexelCache::has`]).
+    #[inline(always)]
+    pub fn valid(&self) -> u32 {
+        u32::from(self.valid)
+    }
+
     /// Stores LOD `lod` of `layout`, decoded into `texels`.
     pub fn fill(&mut self, lod: usize, layout: &Layout, texels: Vec<u32>) {
         let len = (texels.len() as u32) << layout.bpp_shift;

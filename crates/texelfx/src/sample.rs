@@ -146,6 +146,13 @@ impl Tmu {
     /// path uses.
     pub(crate) fn decode_level(&mut self, lod: usize) {
         let mut texels = self.cache.take_buffer(lod);
+        self.decode_level_into(lod, &mut texels);
+        self.cache.fill(lod, &self.layout, texels);
+    }
+
+    /// Appends the decoded texels of LOD `lod` of the bound texture to `texels`, row by
+    /// row, with the fetch the uncached path uses (what [`Tmu::decode_level`] caches).
+    pub(crate) fn decode_level_into(&self, lod: usize, texels: &mut Vec<u32>) {
         let (w, h) = (self.layout.smax(lod) + 1, self.layout.tmax(lod) + 1);
         texels.reserve((w * h) as usize);
         let mut decode_with = |fetch: fn(&Tmu, usize, u32, u32) -> u32| {
@@ -160,7 +167,6 @@ impl Tmu {
             Decode::Argb1555 => decode_with(Tmu::texel_at::<{ Decode::ARGB1555 }>),
             Decode::Argb4444 => decode_with(Tmu::texel_at::<{ Decode::ARGB4444 }>),
         }
-        self.cache.fill(lod, &self.layout, texels);
     }
 
     /// Point sampling or bilinear filtering of 24.8 LOD-0 coordinates at LOD `lod`, for

@@ -122,6 +122,35 @@ impl Chunk {
     }
 }
 
+/// One thread's lanes for [`Tmu::texels_shared`]: what [`Tmu::texels`] keeps in the TMU
+/// (a chunk's lane values, the kept output), and the levels this thread decoded itself
+/// (for one triangle: drop it when the triangle is done).
+pub struct LaneScratch {
+    chunk: Box<Chunk>,
+    kept: Box<ColourLanes>,
+    levels: [Vec<u32>; 9],
+    /// Bit n set when `levels[n]` holds LOD n.
+    valid: u32,
+}
+
+impl LaneScratch {
+    /// Empty lanes.
+    pub fn new() -> Self {
+        Self {
+            chunk: Chunk::new(),
+            kept: Box::new([[0; LANES]; 4]),
+            levels: Default::default(),
+            valid: 0,
+        }
+    }
+}
+
+impl Default for LaneScratch {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// Zero in every lane.
 static ZERO: Lanes = [0; LANES];
 
@@ -156,12 +185,38 @@ impl Tmu {
             self.texels_per_pixel::<M>(dx0, dy, x0, y, alive, n, what, out);
             return;
         }
-        let profile = M::texel(&self.profile);
         if self.lut_stale {
             self.rebuild_lut();
         }
         let mut c = self.lanes.take().unwrap_or_else(Chunk::new);
-        self.iterate_lanes(dx0, dy, n, &mut c);
+        let needed = self.lane_levels::<M>(dx0, dy, x0, y, alive, n, &mut c);
+        let mut missing = needed & !self.cache.valid();
+        while missing != 0 {
+            let lod = missing.trailing_zeros() as usize;
+            missing &= missing - 1;
+            self.decode_level(lod);
+        }
+        let cache = &self.cache;
+        self.texels_from::<M>(|lod| cache.level(lod), needed, alive, n, what, &mut c, out);
+        self.lanes = Some(c);
+    }
+
+    /// Stages 1 to 3 of [`Tmu::texels`] for the live lanes of a chunk; returns the levels
+    /// they sample (bit n for LOD n).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn lane_levels<M: TexelModel>(
+        &self,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        c: &mut Chunk,
+    ) -> u32 {
+        let profile = M::texel(&self.profile);
+        self.iterate_lanes(dx0, dy, n, c);
         // The approximations (module `approx`), read once per chunk; all off is exact.
         let approx = self.approx;
         coords_lanes(
@@ -170,17 +225,41 @@ impl Tmu {
             profile.coord_rounding,
             approx.float_divide,
             n,
-            &mut c,
+            c,
         );
         let lod_from = approx
             .lod_per_chunk
             .then(|| alive[..n].iter().position(|&a| a).unwrap_or(0));
-        self.lod_lanes::<M>(x0, y, n, lod_from, &mut c);
+        self.lod_lanes::<M>(x0, y, n, lod_from, c);
         if approx.point_sampling {
             // `textureMode`'s filter bits read as point sampling (what `Approx` says).
             c.point[..n].fill(1);
         }
-        self.fetch_lanes::<M>(alive, n, &mut c);
+        let mut needed = 0u32;
+        for i in 0..n {
+            if alive[i] {
+                needed |= 1 << c.ilod[i];
+            }
+        }
+        needed
+    }
+
+    /// Stages 4 and 5 of [`Tmu::texels`]: the texels of the live lanes from the decoded
+    /// levels `level(lod)` (every level in `needed` decoded), filtered and combined.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn texels_from<'l, M: TexelModel>(
+        &self,
+        level: impl Fn(usize) -> &'l [u32],
+        needed: u32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+        c: &mut Chunk,
+        out: &mut ColourLanes,
+    ) {
+        let profile = M::texel(&self.profile);
+        self.fetch_lanes::<M>(level, needed, alive, n, c);
 
         let zero_frac =
             profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
@@ -232,7 +311,6 @@ impl Tmu {
                 }
             }
         }
-        self.lanes = Some(c);
     }
 
     /// [`Tmu::texels`] into lanes the TMU keeps, for the next TMU of the chain to read as
@@ -256,6 +334,134 @@ impl Tmu {
             .unwrap_or_else(|| Box::new([[0; LANES]; 4]));
         self.texels::<M>(dx0, dy, x0, y, alive, n, what, &mut kept);
         self.kept.insert(kept)
+    }
+
+    /// Readies the TMU for [`Tmu::texels_shared`] on several threads at once for the
+    /// current triangle: the decode table rebuilt and the levels its `tLOD` clamp lets it
+    /// sample decoded into the cache. Returns `false`, and the caller samples through
+    /// [`Tmu::texels`] alone, where sampling has state of its own: the generic path (no
+    /// cache), 86Box's texture cache (an entry lent per triangle) and the 8-bit bilinear
+    /// weights (which read the cache itself).
+    pub fn share_levels<M: TexelModel>(&mut self) -> bool {
+        let profile = M::texel(&self.profile);
+        if !self.cached
+            || self.box86.lent.is_some()
+            || profile.texture_cache == crate::TextureCacheKey::Box86
+            || profile.bilinear == BilinearPrecision::Bits8
+        {
+            return false;
+        }
+        if self.lut_stale {
+            self.rebuild_lut();
+        }
+        // The integer LODs `lod_lanes` can give: its clamp keeps the 8.8 LOD in lo..=hi
+        // (lodmin where lodmin >= lodmax). A level outside (none should be) is decoded by
+        // the sampling thread itself (`LaneScratch::levels`), with the same texels.
+        let tl = TLod(self.t_lod);
+        let lo = (tl.lodmin() << 6) as i32;
+        let hi = ((tl.lodmax() << 6) as i32).min(0x800).max(lo);
+        let lodmask = self.layout.lodmask as i32;
+        for raw in (lo >> 8)..=(hi >> 8) {
+            let skip = !(lodmask >> raw) & 1;
+            let lod = (raw + skip).min(8) as usize;
+            if !self.cache.has(lod) {
+                self.decode_level(lod);
+            }
+        }
+        true
+    }
+
+    /// [`Tmu::texels`] on a TMU shared between threads, after [`Tmu::share_levels`]
+    /// returned `true` (and nothing changed the TMU since): the same lanes bit for bit,
+    /// with the chunk's lanes in `scratch` (one per thread) and a level missing from the
+    /// cache decoded into `scratch`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn texels_shared<M: TexelModel>(
+        &self,
+        scratch: &mut LaneScratch,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+        out: &mut ColourLanes,
+    ) {
+        let LaneScratch {
+            chunk,
+            levels,
+            valid,
+            ..
+        } = scratch;
+        let lanes = (&mut **chunk, levels, valid);
+        self.texels_shared_in::<M>(lanes, dx0, dy, x0, y, alive, n, what, out);
+    }
+
+    /// [`Tmu::texels_shared`] with the parts of a [`LaneScratch`] but its kept lanes.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn texels_shared_in<M: TexelModel>(
+        &self,
+        (chunk, levels, valid): (&mut Chunk, &mut [Vec<u32>; 9], &mut u32),
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+        out: &mut ColourLanes,
+    ) {
+        let n = n.min(LANES);
+        if !alive[..n].iter().any(|&a| a) {
+            return;
+        }
+        let needed = self.lane_levels::<M>(dx0, dy, x0, y, alive, n, chunk);
+        let mut missing = needed & !self.cache.valid() & !*valid;
+        while missing != 0 {
+            let lod = missing.trailing_zeros() as usize;
+            missing &= missing - 1;
+            levels[lod].clear();
+            self.decode_level_into(lod, &mut levels[lod]);
+            *valid |= 1 << lod;
+        }
+        let cache = &self.cache;
+        let level = |lod: usize| {
+            if cache.has(lod) {
+                cache.level(lod)
+            } else {
+                &levels[lod][..]
+            }
+        };
+        self.texels_from::<M>(level, needed, alive, n, what, chunk, out);
+    }
+
+    /// [`Tmu::texels_shared`] into `scratch`'s kept lanes, for the next TMU down the
+    /// chain (as [`Tmu::texels_kept`]).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn texels_kept_shared<'s, M: TexelModel>(
+        &self,
+        scratch: &'s mut LaneScratch,
+        dx0: i32,
+        dy: i32,
+        x0: i32,
+        y: i32,
+        alive: &[bool; LANES],
+        n: usize,
+        what: LaneOutput<'_>,
+    ) -> &'s ColourLanes {
+        let LaneScratch {
+            chunk,
+            kept,
+            levels,
+            valid,
+        } = scratch;
+        let lanes = (&mut **chunk, levels, valid);
+        self.texels_shared_in::<M>(lanes, dx0, dy, x0, y, alive, n, what, kept);
+        kept
     }
 
     /// [`Tmu::texels`] one pixel at a time through [`Tmu::output`].
@@ -394,30 +600,24 @@ impl Tmu {
         }
     }
 
-    /// Stage 4: decodes the levels the live lanes sample, then samples each live lane
-    /// (the arithmetic of [`Tmu::sample`]'s filter, with the level looked up once per
-    /// chunk when all live lanes sample one level).
+    /// Stage 4: samples each live lane from the decoded levels `level(lod)` (every level
+    /// in `needed` decoded): the arithmetic of [`Tmu::sample`]'s filter, with the level
+    /// looked up once per chunk when all live lanes sample one level.
     #[inline(always)]
-    fn fetch_lanes<M: TexelModel>(&mut self, alive: &[bool; LANES], n: usize, c: &mut Chunk) {
+    fn fetch_lanes<'l, M: TexelModel>(
+        &self,
+        level: impl Fn(usize) -> &'l [u32],
+        needed: u32,
+        alive: &[bool; LANES],
+        n: usize,
+        c: &mut Chunk,
+    ) {
         let profile = M::texel(&self.profile);
-        let mut needed = 0u32;
-        for i in 0..n {
-            if alive[i] {
-                needed |= 1 << c.ilod[i];
-            }
-        }
-        let mut missing = needed;
-        while missing != 0 {
-            let lod = missing.trailing_zeros() as usize;
-            missing &= missing - 1;
-            if !self.cache.has(lod) {
-                self.decode_level(lod);
-            }
-        }
         let mode = TextureMode(self.texture_mode);
         let clamp = (mode.tclamps(), mode.tclampt());
         if profile.bilinear == BilinearPrecision::Bits8 {
-            // The Voodoo 2's 8-bit weights (no model of the SST-1 uses them): per lane.
+            // The Voodoo 2's 8-bit weights (no model of the SST-1 uses them): per lane,
+            // from the cache (which `Tmu::share_levels` refuses to share).
             for i in 0..n {
                 if !alive[i] {
                     continue;
@@ -447,7 +647,7 @@ impl Tmu {
         let tap_count = if all_point { 1 } else { 4 };
         let (taps, texels) = (&c.taps, &mut c.texels);
         if one_level {
-            let level = self.cache.level(needed.trailing_zeros() as usize);
+            let level = level(needed.trailing_zeros() as usize);
             for k in 0..tap_count {
                 for i in 0..n {
                     texels[k][i] = level.get(taps[k][i] as usize).copied().unwrap_or(0);
@@ -456,7 +656,7 @@ impl Tmu {
         } else {
             for k in 0..tap_count {
                 for i in 0..n {
-                    let level = self.cache.level(c.ilod[i] as usize);
+                    let level = level(c.ilod[i] as usize);
                     texels[k][i] = level.get(taps[k][i] as usize).copied().unwrap_or(0);
                 }
             }
