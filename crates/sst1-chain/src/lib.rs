@@ -49,11 +49,7 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
     }
 
     fn band(&self) -> SharedChain<'_, M> {
-        SharedChain {
-            tmus: self.tmus,
-            scratch: self.tmus.iter().map(|_| LaneScratch::new()).collect(),
-            model: PhantomData,
-        }
+        SharedChain::new(self.tmus)
     }
 
     #[inline]
@@ -88,15 +84,7 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
         out: &mut [Lanes; 4],
     ) {
         match self.tmus {
-            [] => {
-                for ch in out.iter_mut() {
-                    for (v, &a) in ch[..n.min(LANES)].iter_mut().zip(alive) {
-                        if a {
-                            *v = 0;
-                        }
-                    }
-                }
-            }
+            [] => zero_live_lanes(alive, n, out),
             [t0, rest @ ..] if self.wiring == ChainModel::Box86 => {
                 box86_texels::<M>(t0, rest.first_mut(), (dx0, dy, x0, y), alive, n, out)
             }
@@ -123,6 +111,28 @@ pub struct SharedChain<'a, M> {
     model: PhantomData<fn() -> M>,
 }
 
+impl<'a, M> SharedChain<'a, M> {
+    /// `tmus` (TMU 0 first) with fresh lanes for one thread.
+    fn new(tmus: &'a [Tmu]) -> Self {
+        Self {
+            tmus,
+            scratch: tmus.iter().map(|_| LaneScratch::new()).collect(),
+            model: PhantomData,
+        }
+    }
+}
+
+/// No TMU: the live lanes of `out` read zero.
+fn zero_live_lanes(alive: &[bool; LANES], n: usize, out: &mut [Lanes; 4]) {
+    for ch in out.iter_mut() {
+        for (v, &a) in ch[..n.min(LANES)].iter_mut().zip(alive) {
+            if a {
+                *v = 0;
+            }
+        }
+    }
+}
+
 impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
     type Band<'s>
         = SharedChain<'s, M>
@@ -134,11 +144,7 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
     }
 
     fn band(&self) -> SharedChain<'_, M> {
-        SharedChain {
-            tmus: self.tmus,
-            scratch: self.tmus.iter().map(|_| LaneScratch::new()).collect(),
-            model: PhantomData,
-        }
+        SharedChain::new(self.tmus)
     }
 
     /// One pixel as a chunk of one live lane (what [`SharedChain::texels`] gives it).
@@ -172,13 +178,7 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
         let (Some((t0, upstream)), Some((s0, upstream_scratch))) =
             (self.tmus.split_first(), self.scratch.split_first_mut())
         else {
-            for ch in out.iter_mut() {
-                for (v, &a) in ch[..n.min(LANES)].iter_mut().zip(alive) {
-                    if a {
-                        *v = 0;
-                    }
-                }
-            }
+            zero_live_lanes(alive, n, out);
             return;
         };
         // Upstream first: the last TMU sees zero, each output feeds the next down.
