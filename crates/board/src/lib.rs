@@ -211,9 +211,11 @@ impl Board {
         }
     }
 
-    /// Shade large untextured triangles on `threads` render threads (bands of rows;
-    /// 1, the default, draws on the calling thread). Pixels, counters and status reads
-    /// are the same for every count.
+    /// Shade large triangles on `threads` render threads (bands of rows; 1, the default,
+    /// draws on the calling thread). Textured ones go to the threads where the TMU chain
+    /// can be shared: the hardware model and the MAME and DOSBox models (not 86Box's
+    /// texture cache, not the generic path). Pixels, counters, status reads and save
+    /// states are the same for every count; only [`Board::path_counts`] says it.
     pub fn set_threads(&mut self, threads: usize) {
         self.fbi.set_threads(threads);
     }

@@ -11,7 +11,7 @@
 //! The header says which board the state is of: the crate version that wrote it, the
 //! configuration (memory sizes, TMU count), the model, and the number of trace ops run
 //! before it was taken when the front end knows it (`voodoo replay --save-at`), so that
-//! `--resume` goes on from the next op. A reader refuses a newer format version, a state
+//! `--resume` goes on from the next op. A reader refuses another format version, a state
 //! of another configuration or model, a damaged or cut-short file and one larger than a
 //! board of its configuration can hold, each with its own [`StateError`]; no length in
 //! the file is trusted for an allocation before the whole file's size is checked
@@ -24,7 +24,12 @@
 //! `texelfx`). Caches are rebuilt instead (the TMUs' decoded-texel caches, decode
 //! tables, layouts, dither tables, the video frame from the video registers and the DAC,
 //! the span kernels' constants). The host's choices stay with the board that loads:
-//! render threads and the generic-path switch.
+//! render threads and the generic-path switch, and the path counts that report what they
+//! did ([`Board::path_counts`]), so that a state never depends on how many threads shaded
+//! the frames before it.
+//!
+//! Format versions: 1 also held the path counts; 2 (this build) does not. A build reads
+//! its own version only.
 
 use serde::{Deserialize, Serialize};
 use sst1_regs::addr;
@@ -42,8 +47,8 @@ use crate::{AccuracyProfile, Board, BoardConfig};
 /// The first bytes of every save state.
 pub const MAGIC: [u8; 8] = *b"SST1STAT";
 
-/// The format version this build writes, and the newest it reads.
-pub const FORMAT_VERSION: u32 = 1;
+/// The format version this build writes, and the only one it reads.
+pub const FORMAT_VERSION: u32 = 2;
 
 /// The crate version written into the header.
 const CRATE_VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -76,6 +81,14 @@ pub enum StateError {
     /// Written by a newer build, in a format this one does not know.
     #[error("save state format version {found} is newer than this build reads (up to {supported}): use a newer voodoo-rs")]
     NewerVersion {
+        /// The file's format version.
+        found: u32,
+        /// [`FORMAT_VERSION`].
+        supported: u32,
+    },
+    /// Written by an older build, in a format this one no longer reads.
+    #[error("save state format version {found} is older than this build reads ({supported}): replay the program or trace it came from to take it again")]
+    OlderVersion {
         /// The file's format version.
         found: u32,
         /// [`FORMAT_VERSION`].
@@ -224,6 +237,12 @@ fn split(bytes: &[u8]) -> Result<(StateInfo, &[u8]), StateError> {
     }
     if version == 0 {
         return Err(StateError::Corrupt("format version 0".into()));
+    }
+    if version < FORMAT_VERSION {
+        return Err(StateError::OlderVersion {
+            found: version,
+            supported: FORMAT_VERSION,
+        });
     }
     let (header, payload): (Header, &[u8]) = postcard::take_from_bytes(&bytes[12..])
         .map_err(|e| StateError::Corrupt(format!("header: {e}")))?;

@@ -2,10 +2,11 @@
 //! generated trace is cut at three points (a third of the way in, right after a triangle
 //! command in the middle of the trace, so inside a frame, and right after the middle
 //! texture download), the board saved there and restored into a fresh board that replays
-//! the rest; every dump, the final front, back and aux buffers, the counters, the path
-//! counts, the modelled time frame by frame, the diagnostics and a final `status` and
-//! `vRetrace` read must equal those of the run that was never interrupted. A restored
-//! board saves the same bytes it was restored from.
+//! the rest; every dump, the final front, back and aux buffers, the counters, the
+//! modelled time frame by frame, the diagnostics and a final `status` and `vRetrace` read
+//! must equal those of the run that was never interrupted. A restored board saves the
+//! same bytes it was restored from, and a state does not depend on how many render
+//! threads shaded the frames before it.
 //!
 //! The uninterrupted run saves at each cut as it passes it, so a trace costs about three
 //! replays. The benchmark traces (`perf_tex_heavy`, `perf_gouraud_heavy`) are cut short
@@ -29,7 +30,6 @@ struct Outcome {
     dumps: Vec<Dump>,
     finals: Vec<Vec<u16>>,
     stats: sst1_board::Stats,
-    paths: sst1_board::PathCounts,
     cycles: u64,
     frames: Vec<sst1_board::FrameTime>,
     total: sst1_board::FrameTime,
@@ -50,7 +50,6 @@ fn finish(mut board: Board, dumps: Vec<Dump>) -> Outcome {
         dumps,
         finals,
         stats: board.stats(),
-        paths: board.path_counts(),
         cycles: t.cycles(),
         frames: t.frames,
         total: t.total,
@@ -160,9 +159,9 @@ fn describe_difference(what: &str, whole: &Outcome, resumed: &Outcome) -> String
         return format!("{what}: the final buffers differ");
     }
     format!(
-        "{what}: counters differ\n  uninterrupted {:?} {:?} cycles {} status {:#x} vRetrace {} {:?}\n  resumed       {:?} {:?} cycles {} status {:#x} vRetrace {} {:?}",
-        whole.stats, whole.paths, whole.cycles, whole.status, whole.v_retrace, whole.diagnostics,
-        resumed.stats, resumed.paths, resumed.cycles, resumed.status, resumed.v_retrace, resumed.diagnostics,
+        "{what}: counters differ\n  uninterrupted {:?} cycles {} status {:#x} vRetrace {} {:?}\n  resumed       {:?} cycles {} status {:#x} vRetrace {} {:?}",
+        whole.stats, whole.cycles, whole.status, whole.v_retrace, whole.diagnostics,
+        resumed.stats, resumed.cycles, resumed.status, resumed.v_retrace, resumed.diagnostics,
     )
 }
 
@@ -220,6 +219,40 @@ fn conformance_traces_resume_identically() {
         check_dir("conformance/traces", &[Model::Hardware], false),
         41
     );
+}
+
+/// The host's choice of render threads is not state: the same trace on one thread and on
+/// four saves the same bytes, though the bands on four threads really ran (the path
+/// counts, which are not saved, say how many pixels they shaded).
+#[test]
+fn states_do_not_depend_on_render_threads() {
+    for name in ["tmu2_combine", "tex_rgb565_bilinear", "gouraud_dither4"] {
+        let path = traces("conformance/traces")
+            .into_iter()
+            .find(|p| {
+                p.file_name()
+                    .is_some_and(|s| s.to_string_lossy().starts_with(&format!("{name}.")))
+            })
+            .unwrap_or_else(|| panic!("no trace {name}"));
+        let trace = load_trace(&path).unwrap_or_else(|e| panic!("{e}"));
+        let run = |threads: usize| {
+            let mut board = Board::new(trace.board_config());
+            board.set_threads(threads);
+            execute(&trace.ops, &mut board, |_| {});
+            (board.save_state(), board.path_counts().in_bands)
+        };
+        let (one, in_bands_one) = run(1);
+        let (four, in_bands_four) = run(4);
+        assert_eq!(in_bands_one, 0, "{name}");
+        assert!(
+            in_bands_four > 0,
+            "{name}: no band ran on the render threads"
+        );
+        assert!(
+            one == four,
+            "{name}: the state depends on the render threads"
+        );
+    }
 }
 
 #[test]
@@ -308,6 +341,12 @@ fn states_of_other_boards_and_versions_are_refused() {
             FORMAT_VERSION
         )
     );
+
+    // An older version (1 also held the path counts).
+    let mut older = state.clone();
+    older[8..12].copy_from_slice(&(FORMAT_VERSION - 1).to_le_bytes());
+    let e = refusal(&older);
+    assert!(matches!(e, StateError::OlderVersion { found, .. } if found == FORMAT_VERSION - 1));
 
     // Not a state; cut short at many lengths; trailing bytes.
     assert!(matches!(refusal(b"SST1TRCB...."), StateError::NotAState));

@@ -28,7 +28,7 @@
 //! * `VOODOO_METHOD`: how the board draws (`voodoo replay --method`): `exact` (the
 //!   default), `reference`, or an approximation that trades exactness for speed,
 //!   `nearest`, `lod-per-chunk`, `float-divide` or `fastest` (docs/methods.md).
-//! * `VOODOO_THREADS=N`: render threads for large untextured triangles (default: the
+//! * `VOODOO_THREADS=N`: render threads for large triangles (default: the
 //!   machine's cores; `voodoo replay --threads`). The pixels are the same for every N.
 //! * `VOODOO_SAVE_STATE=path`: save the whole board (`sst1_board::state`) at
 //!   `grGlideShutdown`, or, with `VOODOO_SAVE_STATE_SWAP=N`, right after the Nth buffer

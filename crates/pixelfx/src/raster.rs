@@ -119,9 +119,10 @@ impl Fbi {
         self.generic_path = on;
     }
 
-    /// Shade large untextured triangles on `threads` render threads (1: on the calling
-    /// thread only; 0 counts as 1, more than [`MAX_THREADS`] as that). Pixels and counters are the same for every count; the
-    /// threads are rayon's global pool.
+    /// Shade large triangles on `threads` render threads (1: on the calling thread only;
+    /// 0 counts as 1, more than [`MAX_THREADS`] as that); a textured one only where its
+    /// [`TexelSource::share`] agrees. Pixels and counters are the same for every count;
+    /// the threads are rayon's global pool.
     pub fn set_threads(&mut self, threads: usize) {
         self.threads = threads.clamp(1, MAX_THREADS);
     }
@@ -139,7 +140,7 @@ impl Fbi {
     /// Walk the triangle's spans and shade their pixels: a chunk of up to
     /// [`crate::span::LANES`] pixels at a time with the span kernels (`SPANS`), or one
     /// pixel at a time with the reference path. With more than one render thread
-    /// ([`Fbi::set_threads`]), the rows of a large untextured triangle are shaded in bands
+    /// ([`Fbi::set_threads`]), the rows of a large triangle are shaded in bands
     /// on several threads ([`Fbi::shade_rows_threaded`]).
     #[inline(always)]
     fn walk<M: PixelModel, T: TexelSource, const SPANS: bool>(

@@ -4,15 +4,16 @@
 //!
 //! Saved: the register file, the triangle parameter registers, the frame-buffer memory
 //! (as little-endian bytes), its layout and front/back buffer indices, the fog table (as
-//! the 32 `fogTable` words that load it), the counters and the path counts. Not saved:
-//! the profile and its dither tables (the board's model sets them), the render threads and
-//! the generic-path switch (the host's choice), and the span kernels' per-triangle
-//! constants (built for each triangle).
+//! the 32 `fogTable` words that load it) and the counters. Not saved: the profile and its
+//! dither tables (the board's model sets them), the render threads, the generic-path
+//! switch and the path counts (the host's choices and what they did: a state must not
+//! depend on how many threads shaded it), and the span kernels' per-triangle constants
+//! (built for each triangle).
 
 use serde::{Deserialize, Serialize};
 
 use crate::fb::Layout;
-use crate::fbi::{Fbi, PathCounts};
+use crate::fbi::Fbi;
 use crate::params::TriangleParams;
 use crate::stats::Stats;
 
@@ -35,8 +36,6 @@ pub struct FbiState {
     fog_table: [u32; 32],
     /// Statistics counters and command counts.
     stats: Stats,
-    /// Pixels shaded by each path.
-    path_counts: PathCounts,
 }
 
 /// Why an [`FbiState`] does not fit an FBI: a damaged or forged state.
@@ -74,7 +73,6 @@ impl Fbi {
             back: self.fb.back as u8,
             fog_table,
             stats: self.stats,
-            path_counts: self.path_counts,
         }
     }
 
@@ -118,7 +116,6 @@ impl Fbi {
             self.fog_table.write(word, value);
         }
         self.stats = state.stats;
-        self.path_counts = state.path_counts;
         Ok(())
     }
 

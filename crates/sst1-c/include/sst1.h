@@ -82,7 +82,8 @@ typedef enum sst1_result {
     SST1_ERR_INTERNAL = 9,
     /* sst1_load_state: not a save state, or a damaged, cut-short or forged one. */
     SST1_ERR_BAD_STATE = 10,
-    /* sst1_load_state: a state in a newer format than this library reads. */
+    /* sst1_load_state: a state in a format version this library does not read (newer,
+     * or older than the one it writes). */
     SST1_ERR_STATE_VERSION = 11,
     /* sst1_load_state: a state of a board with another configuration or model. */
     SST1_ERR_STATE_MISMATCH = 12
@@ -188,7 +189,7 @@ sst1_result sst1_get_model(const sst1_board *board, sst1_model *model);
  * machine's cores), 1 to SST1_MAX_RENDER_THREADS asks for that many (more is
  * SST1_ERR_BAD_ARGUMENT); sst1_get_render_threads returns the setting. Until it is
  * called the board renders on the calling thread. Every command still completes inside
- * the write that starts it; the rows of a large untextured triangle are shaded in bands
+ * the write that starts it; the rows of a large triangle are shaded in bands
  * on that many threads meanwhile. The output is the same for every setting. */
 sst1_result sst1_set_render_threads(sst1_board *board, uint32_t threads);
 
@@ -334,7 +335,7 @@ sst1_result sst1_save_state(const sst1_board *board, void *buffer, size_t capaci
  * configuration and model; the board then goes on exactly as the saved one would
  * have. The render threads and the swap callback stay as they are, and the restored
  * swap count is not reported to the callback. Refused, with the board unchanged:
- * SST1_ERR_NULL if `state` is NULL, SST1_ERR_STATE_VERSION for a newer format,
+ * SST1_ERR_NULL if `state` is NULL, SST1_ERR_STATE_VERSION for another format version,
  * SST1_ERR_STATE_MISMATCH for another configuration or model (sst1_set_model first),
  * SST1_ERR_BAD_STATE for anything that is not an intact state. */
 sst1_result sst1_load_state(sst1_board *board, const void *state, size_t length);

@@ -105,7 +105,7 @@ impl Error {
             Error::Unsupported => c"not modelled by this version of the board",
             Error::Internal => c"internal error in libsst1",
             Error::BadState => c"not a save state, or a damaged one",
-            Error::StateVersion => c"save state written by a newer libsst1",
+            Error::StateVersion => c"save state in a format version this libsst1 does not read",
             Error::StateMismatch => c"save state of another board configuration or model",
         }
     }
@@ -853,7 +853,7 @@ pub unsafe extern "C" fn sst1_vertical_retrace(board: *mut Sst1Board, active: *m
 /// The C code of a refused save state.
 fn state_error(e: &StateError) -> Error {
     match e {
-        StateError::NewerVersion { .. } => Error::StateVersion,
+        StateError::NewerVersion { .. } | StateError::OlderVersion { .. } => Error::StateVersion,
         StateError::OtherConfig { .. } | StateError::OtherModel { .. } => Error::StateMismatch,
         StateError::NotAState | StateError::Corrupt(_) | StateError::TooLarge { .. } => {
             Error::BadState

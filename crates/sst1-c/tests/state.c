@@ -138,9 +138,12 @@ int main(void) {
     EXPECT_RC(sst1_load_state(b, state, len / 2), SST1_ERR_BAD_STATE);
     EXPECT_RC(sst1_load_state(b, state, 0), SST1_ERR_BAD_STATE);
     EXPECT_RC(sst1_load_state(b, "not a state at all", 18), SST1_ERR_BAD_STATE);
-    state[8] = 99; /* the format version */
+    unsigned char version = state[8]; /* the format version */
+    state[8] = 99;
     EXPECT_RC(sst1_load_state(b, state, len), SST1_ERR_STATE_VERSION);
-    state[8] = 1;
+    state[8] = (unsigned char)(version - 1); /* an older format */
+    EXPECT_RC(sst1_load_state(b, state, len), SST1_ERR_STATE_VERSION);
+    state[8] = version;
     unsigned char *after = malloc(before_len);
     EXPECT_RC(sst1_save_state(b, after, before_len, &len2), SST1_OK);
     EXPECT(len2 == before_len && memcmp(before, after, before_len) == 0);

@@ -80,7 +80,7 @@ enum Command {
         /// `{"pixel": {"blend": {"arithmetic": "Mame"}}}` (see docs/accuracy.md).
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
-        /// Render threads for large untextured triangles (bands of rows; the output is the
+        /// Render threads for large triangles (bands of rows; the output is the
         /// same for every count). Default: the machine's cores.
         #[arg(long, value_name = "N")]
         threads: Option<usize>,
