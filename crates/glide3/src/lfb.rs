@@ -64,7 +64,10 @@ pub fn clip_to_window(x: u32, y: u32, width: u32, height: u32) -> (u32, u32) {
 
 impl crate::Glide {
     /// `grLfbLock`. `None` when the lock is refused (already locked, bad buffer or
-    /// reserved write mode); the registers are only written for accepted locks.
+    /// write mode). As in 3dfx's glfb.c, only a lock refused because one is held writes
+    /// nothing: a read lock of a bad buffer still writes `lfbMode` (read buffer 0), and a
+    /// write lock refused for its buffer or mode still writes `zaColor`, `lfbMode` (the
+    /// mode's value ORed in as given, write buffer 0 for a bad buffer) and `fbzMode`.
     pub(crate) fn lfb_lock_hw(
         &mut self,
         ty: u32,
@@ -82,16 +85,17 @@ impl crate::Glide {
         let y_origin = origin != 0;
         if ty == GR_LFB_READ_ONLY {
             let sel = match buffer {
-                GR_BUFFER_FRONTBUFFER => LfbReadBuffer::Front,
-                GR_BUFFER_BACKBUFFER => LfbReadBuffer::Back,
-                GR_BUFFER_AUXBUFFER => LfbReadBuffer::Aux,
-                _ => return None,
+                GR_BUFFER_FRONTBUFFER => Some(LfbReadBuffer::Front),
+                GR_BUFFER_BACKBUFFER => Some(LfbReadBuffer::Back),
+                GR_BUFFER_AUXBUFFER => Some(LfbReadBuffer::Aux),
+                _ => None,
             };
             let l = LfbMode(self.st.fbi.lfb_mode)
-                .with_read_buffer_select(sel)
+                .with_read_buffer_select(sel.unwrap_or(LfbReadBuffer::Front))
                 .with_y_origin(y_origin);
             self.hw.w(LFB_MODE, l.0);
             self.st.fbi.lfb_mode = l.0;
+            sel?;
             self.lfb_locks[slot] = Some(buffer);
             return Some(LfbInfo {
                 stride_in_bytes: 2048,
@@ -99,12 +103,14 @@ impl crate::Glide {
                 origin,
             });
         }
-        if (3..=11).contains(&write_mode)
+        // The constant depth and alpha: grDepthBiasLevel shares the register.
+        let za = ZaColor::default()
+            .with_constant_depth(self.st.lfb_constant_depth as u16)
+            .with_constant_alpha(self.st.lfb_constant_alpha);
+        self.hw.w(ZA_COLOR, za.0);
+        let mut granted = !((3..=11).contains(&write_mode)
             && write_mode != GR_LFBWRITEMODE_888
-            && write_mode != GR_LFBWRITEMODE_8888
-        {
-            return None;
-        }
+            && write_mode != GR_LFBWRITEMODE_8888);
         let (sel, mode) = match buffer {
             GR_BUFFER_FRONTBUFFER | GR_BUFFER_BACKBUFFER => {
                 let m = if write_mode == GR_LFBWRITEMODE_ANY {
@@ -112,17 +118,13 @@ impl crate::Glide {
                 } else {
                     write_mode
                 };
-                if m == GR_LFBWRITEMODE_ZA16 {
-                    return None;
-                }
-                (
-                    if buffer == GR_BUFFER_BACKBUFFER {
-                        ColorBuffer::Back
-                    } else {
-                        ColorBuffer::Front
-                    },
-                    m,
-                )
+                granted &= m != GR_LFBWRITEMODE_ZA16;
+                let sel = if buffer == GR_BUFFER_BACKBUFFER {
+                    ColorBuffer::Back
+                } else {
+                    ColorBuffer::Front
+                };
+                (sel, m)
             }
             GR_BUFFER_AUXBUFFER => {
                 let m = if write_mode == GR_LFBWRITEMODE_ANY {
@@ -130,30 +132,37 @@ impl crate::Glide {
                 } else {
                     write_mode
                 };
-                if m != GR_LFBWRITEMODE_ZA16 {
-                    return None;
-                }
+                granted &= m == GR_LFBWRITEMODE_ZA16;
                 (ColorBuffer::Front, m)
             }
-            _ => return None,
+            // 3dfx's release build goes on with no buffer bits and the mode as given.
+            _ => {
+                granted = false;
+                (ColorBuffer::Front, write_mode)
+            }
         };
-        let za = ZaColor::default()
-            .with_constant_depth(self.st.lfb_constant_depth as u16)
-            .with_constant_alpha(self.st.lfb_constant_alpha);
-        self.hw.w(ZA_COLOR, za.0);
         let mut fbz = FbzMode(self.st.fbi.fbz_mode).with_enable_depth_bias(false);
-        // GR_LFBWRITEMODE_* is the hardware write format.
-        let l = LfbMode(self.st.fbi.lfb_mode)
-            .with_write_buffer_select(sel)
-            .with_y_origin(y_origin)
-            .with_write_format(LfbWriteFormat::from_bits(mode))
-            .with_enable_pixel_pipeline(pipeline);
         if pipeline {
             fbz = fbz.with_y_origin(y_origin);
         }
+        // GR_LFBWRITEMODE_* is the hardware write format; glfb.c ORs the whole value in
+        // at bit 0, so a value past 4 bits (GR_LFBWRITEMODE_ANY for a bad buffer) sets
+        // the bits above the format too.
+        let l = LfbMode(
+            LfbMode(self.st.fbi.lfb_mode)
+                .with_write_buffer_select(sel)
+                .with_y_origin(y_origin)
+                .with_write_format(LfbWriteFormat::from_bits(0))
+                .with_enable_pixel_pipeline(pipeline)
+                .0
+                | mode,
+        );
         self.hw.w(LFB_MODE, l.0);
         self.st.fbi.lfb_mode = l.0;
         self.hw.w(FBZ_MODE, fbz.0);
+        if !granted {
+            return None;
+        }
         self.lfb_locks[slot] = Some(buffer);
         Some(LfbInfo {
             stride_in_bytes: stride_for(mode),

@@ -180,3 +180,166 @@ fn lfb_locks_idle_as_3dfx_does() {
         0,
     );
 }
+
+/// A refused grLfbLock writes what 3dfx's writes before it refuses (glfb.c): nothing
+/// when a lock of that type is held; for a read lock of a bad buffer `lfbMode` with read
+/// buffer 0; for a write lock of a bad buffer or mode `zaColor`, `lfbMode` with the
+/// mode ORed in as given (write buffer 0 for a bad buffer) and `fbzMode` without depth
+/// bias. The values below follow glfb.c's bit operations by hand: lfbMode bits 3:0
+/// format, 5:4 write buffer, 7:6 read buffer, 8 pixel pipeline, 13 Y origin (spec 5.20);
+/// zaColor 15:0 depth, 31:24 alpha; fbzMode bit 16 depth bias, bit 17 Y origin.
+#[test]
+fn refused_lfb_locks_write_what_3dfx_writes() {
+    use common::Op;
+    use sst1_regs::addr::{FBZ_MODE, LFB_MODE, NOP_CMD, ZA_COLOR};
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
+    g.lfb_constant_depth(0x1234);
+    g.lfb_constant_alpha(0x56);
+    g.depth_bias_level(7);
+    let last = |reg: u32| {
+        rec.0.borrow().iter().rev().find_map(|op| match *op {
+            Op::W(a, v) if a & 0x3fc == reg => Some(v),
+            _ => None,
+        })
+    };
+    // The writes a call makes, nopCMD (grFinish) left out.
+    let writes = |g: &mut Glide, f: &dyn Fn(&mut Glide) -> bool| {
+        let before = rec.0.borrow().len();
+        assert!(!f(g), "the lock must be refused");
+        rec.0.borrow()[before..]
+            .iter()
+            .filter(|op| !matches!(op, Op::W(a, _) if a & 0x3fc == NOP_CMD))
+            .map(|op| match *op {
+                Op::W(a, v) => (a & 0x3fc, v),
+                Op::Pci(a, v) => (0x1000 + a, v),
+            })
+            .collect::<Vec<_>>()
+    };
+    let lock = |ty, buffer, mode, origin, pipe| {
+        move |g: &mut Glide| g.lfb_lock(ty, buffer, mode, origin, pipe).is_some()
+    };
+    // Drawing state first (validated before the lock), then the registers' values.
+    g.depth_mask(true);
+    assert!(g
+        .lfb_lock(
+            GR_LFB_READ_ONLY,
+            GR_BUFFER_FRONTBUFFER,
+            GR_LFBWRITEMODE_ANY,
+            0,
+            false
+        )
+        .is_some());
+    assert!(g.lfb_unlock(GR_LFB_READ_ONLY, GR_BUFFER_FRONTBUFFER));
+    let lfb = last(LFB_MODE).expect("lfbMode written");
+    let fbz = last(FBZ_MODE).expect("fbzMode written");
+    let za = 0x56 << 24 | 0x1234;
+
+    // Read lock of a bad buffer: lfbMode, read buffer 0, Y origin as asked.
+    let read_bad = (lfb & !(0b11 << 6 | 1 << 13)) | 1 << 13;
+    assert_eq!(
+        writes(
+            &mut g,
+            &lock(GR_LFB_READ_ONLY, 9, GR_LFBWRITEMODE_ANY, 1, false)
+        ),
+        [(LFB_MODE, read_bad)]
+    );
+    let lfb = read_bad;
+    let write_lfb = |sel: u32, mode: u32, y: bool, pipe: bool| {
+        (lfb & !(0b11 << 4 | 1 << 13 | 0xf | 1 << 8))
+            | sel << 4
+            | mode
+            | u32::from(y) << 13
+            | u32::from(pipe) << 8
+    };
+    let no_bias = fbz & !(1 << 16);
+    // A reserved mode on the back buffer, through the pipeline with the lower-left origin.
+    assert_eq!(
+        writes(
+            &mut g,
+            &lock(GR_LFB_WRITE_ONLY, GR_BUFFER_BACKBUFFER, 6, 1, true)
+        ),
+        [
+            (ZA_COLOR, za),
+            (LFB_MODE, write_lfb(1, 6, true, true)),
+            (FBZ_MODE, no_bias | 1 << 17)
+        ]
+    );
+    // ZA16 on a colour buffer; a colour mode on the aux buffer.
+    assert_eq!(
+        writes(
+            &mut g,
+            &lock(
+                GR_LFB_WRITE_ONLY,
+                GR_BUFFER_FRONTBUFFER,
+                GR_LFBWRITEMODE_ZA16,
+                0,
+                false
+            )
+        ),
+        [
+            (ZA_COLOR, za),
+            (LFB_MODE, write_lfb(0, 0xf, false, false)),
+            (FBZ_MODE, no_bias)
+        ]
+    );
+    let lfb_now = write_lfb(0, 0xf, false, false);
+    assert_eq!(
+        writes(
+            &mut g,
+            &lock(
+                GR_LFB_WRITE_ONLY,
+                GR_BUFFER_AUXBUFFER,
+                GR_LFBWRITEMODE_565,
+                0,
+                false
+            )
+        ),
+        [
+            (ZA_COLOR, za),
+            (LFB_MODE, (lfb_now & !0x13f) & !(1 << 13)),
+            (FBZ_MODE, no_bias)
+        ]
+    );
+    // A bad buffer with GR_LFBWRITEMODE_ANY: 0xff ORed in at bit 0 sets bits 7:0.
+    assert_eq!(
+        writes(
+            &mut g,
+            &lock(GR_LFB_WRITE_ONLY, 7, GR_LFBWRITEMODE_ANY, 0, false)
+        ),
+        [
+            (ZA_COLOR, za),
+            (LFB_MODE, (lfb_now & !0x13f & !(1 << 13)) | 0xff),
+            (FBZ_MODE, no_bias)
+        ]
+    );
+    // A held lock: nothing at all; an unknown lock type: nothing.
+    assert!(g
+        .lfb_lock(
+            GR_LFB_WRITE_ONLY,
+            GR_BUFFER_BACKBUFFER,
+            GR_LFBWRITEMODE_565,
+            0,
+            false
+        )
+        .is_some());
+    assert_eq!(
+        writes(
+            &mut g,
+            &lock(
+                GR_LFB_WRITE_ONLY,
+                GR_BUFFER_FRONTBUFFER,
+                GR_LFBWRITEMODE_565,
+                0,
+                false
+            )
+        ),
+        []
+    );
+    assert_eq!(
+        writes(
+            &mut g,
+            &lock(5, GR_BUFFER_FRONTBUFFER, GR_LFBWRITEMODE_565, 0, false)
+        ),
+        []
+    );
+}
