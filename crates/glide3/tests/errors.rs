@@ -252,65 +252,34 @@ fn refused_lfb_locks_write_what_3dfx_writes() {
             | u32::from(pipe) << 8
     };
     let no_bias = fbz & !(1 << 16);
+    // A refused write lock of `buffer` in `mode`: zaColor, lfbMode, fbzMode.
+    let mut refused = |buffer, mode, lower_left: bool, pipe: bool| {
+        let origin = u32::from(lower_left);
+        writes(&mut g, &lock(GR_LFB_WRITE_ONLY, buffer, mode, origin, pipe))
+    };
     // A reserved mode on the back buffer, through the pipeline with the lower-left origin.
     assert_eq!(
-        writes(
-            &mut g,
-            &lock(GR_LFB_WRITE_ONLY, GR_BUFFER_BACKBUFFER, 6, 1, true)
-        ),
+        refused(GR_BUFFER_BACKBUFFER, 6, true, true),
         [
             (ZA_COLOR, za),
             (LFB_MODE, write_lfb(1, 6, true, true)),
             (FBZ_MODE, no_bias | 1 << 17)
         ]
     );
-    // ZA16 on a colour buffer; a colour mode on the aux buffer.
+    // ZA16 on a colour buffer; a colour mode on the aux buffer (write buffer 0).
+    let plain = |lfb_mode: u32| [(ZA_COLOR, za), (LFB_MODE, lfb_mode), (FBZ_MODE, no_bias)];
     assert_eq!(
-        writes(
-            &mut g,
-            &lock(
-                GR_LFB_WRITE_ONLY,
-                GR_BUFFER_FRONTBUFFER,
-                GR_LFBWRITEMODE_ZA16,
-                0,
-                false
-            )
-        ),
-        [
-            (ZA_COLOR, za),
-            (LFB_MODE, write_lfb(0, 0xf, false, false)),
-            (FBZ_MODE, no_bias)
-        ]
+        refused(GR_BUFFER_FRONTBUFFER, GR_LFBWRITEMODE_ZA16, false, false),
+        plain(write_lfb(0, 0xf, false, false))
     );
-    let lfb_now = write_lfb(0, 0xf, false, false);
     assert_eq!(
-        writes(
-            &mut g,
-            &lock(
-                GR_LFB_WRITE_ONLY,
-                GR_BUFFER_AUXBUFFER,
-                GR_LFBWRITEMODE_565,
-                0,
-                false
-            )
-        ),
-        [
-            (ZA_COLOR, za),
-            (LFB_MODE, (lfb_now & !0x13f) & !(1 << 13)),
-            (FBZ_MODE, no_bias)
-        ]
+        refused(GR_BUFFER_AUXBUFFER, GR_LFBWRITEMODE_565, false, false),
+        plain(write_lfb(0, 0, false, false))
     );
     // A bad buffer with GR_LFBWRITEMODE_ANY: 0xff ORed in at bit 0 sets bits 7:0.
     assert_eq!(
-        writes(
-            &mut g,
-            &lock(GR_LFB_WRITE_ONLY, 7, GR_LFBWRITEMODE_ANY, 0, false)
-        ),
-        [
-            (ZA_COLOR, za),
-            (LFB_MODE, (lfb_now & !0x13f & !(1 << 13)) | 0xff),
-            (FBZ_MODE, no_bias)
-        ]
+        refused(7, GR_LFBWRITEMODE_ANY, false, false),
+        plain(write_lfb(0, 0, false, false) | 0xff)
     );
     // A held lock: nothing at all; an unknown lock type: nothing.
     assert!(g

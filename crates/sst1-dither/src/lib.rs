@@ -276,8 +276,8 @@ mod tests {
         }
     }
 
-    #[test]
-    fn every_value_position_channel_and_matrix() {
+    /// Each 2x2 matrix's tables, with each dither kind.
+    fn each_table_and_kind(mut check: impl FnMut(DitherMatrix2x2, &Dither, DitherKind)) {
         for m2 in [DitherMatrix2x2::Classic, DitherMatrix2x2::Mame] {
             let t = Dither::new(m2);
             for kind in [
@@ -285,29 +285,36 @@ mod tests {
                 DitherKind::Dither4x4,
                 DitherKind::Dither2x2,
             ] {
-                // x and y up to 8 also checks that only their low bits matter.
-                for y in 0..8 {
-                    for x in 0..8 {
-                        for v in 0..=255u8 {
-                            let vv = v as u32;
-                            let want_r = expected(kind, m2, x, y, vv, 5);
-                            let want_g = expected(kind, m2, x, y, vv, 6);
-                            let want = (want_r << 11 | want_g << 5 | want_r) as u16;
-                            assert_eq!(
-                                t.rgb565(kind, x, y, v, v, v),
-                                want,
-                                "{m2:?} {kind:?} x{x} y{y} v{v}"
-                            );
-                            // Channels are independent: vary each alone.
-                            assert_eq!(t.rgb565(kind, x, y, v, 0, 0), (want_r as u16) << 11);
-                            assert_eq!(t.rgb565(kind, x, y, 0, v, 0), (want_g as u16) << 5);
-                            assert_eq!(t.rgb565(kind, x, y, 0, 0, v), want_r as u16);
-                        }
-                        assert_eq!(t.matrix_value(kind, x, y) as u32, entry(kind, m2, x, y));
-                    }
-                }
+                check(m2, &t, kind);
             }
         }
+    }
+
+    #[test]
+    fn every_value_position_channel_and_matrix() {
+        each_table_and_kind(|m2, t, kind| {
+            // x and y up to 8 also checks that only their low bits matter.
+            for y in 0..8 {
+                for x in 0..8 {
+                    for v in 0..=255u8 {
+                        let vv = v as u32;
+                        let want_r = expected(kind, m2, x, y, vv, 5);
+                        let want_g = expected(kind, m2, x, y, vv, 6);
+                        let want = (want_r << 11 | want_g << 5 | want_r) as u16;
+                        assert_eq!(
+                            t.rgb565(kind, x, y, v, v, v),
+                            want,
+                            "{m2:?} {kind:?} x{x} y{y} v{v}"
+                        );
+                        // Channels are independent: vary each alone.
+                        assert_eq!(t.rgb565(kind, x, y, v, 0, 0), (want_r as u16) << 11);
+                        assert_eq!(t.rgb565(kind, x, y, 0, v, 0), (want_g as u16) << 5);
+                        assert_eq!(t.rgb565(kind, x, y, 0, 0, v), want_r as u16);
+                    }
+                    assert_eq!(t.matrix_value(kind, x, y) as u32, entry(kind, m2, x, y));
+                }
+            }
+        });
     }
 
     /// The row conversion equals the per-pixel tables for every kind, matrix, start
@@ -315,32 +322,24 @@ mod tests {
     /// channel values that run through 0..=255 and past it (only the low 8 bits count).
     #[test]
     fn rows_equal_pixels() {
-        for m2 in [DitherMatrix2x2::Classic, DitherMatrix2x2::Mame] {
-            let t = Dither::new(m2);
-            for kind in [
-                DitherKind::Off,
-                DitherKind::Dither4x4,
-                DitherKind::Dither2x2,
-            ] {
-                for seed in 0..64i32 {
-                    let len = 1 + (seed as usize * 7) % 40;
-                    let (x0, y) = (seed as u32 * 5 % 11, seed as u32 % 6);
-                    let ch = |k: i32| -> Vec<i32> {
-                        (0..len as i32)
-                            .map(|i| (i * 37 + seed * 101 + k * 59) % 300)
-                            .collect()
-                    };
-                    let (r, g, b) = (ch(0), ch(1), ch(2));
-                    let mut out = vec![0u16; len];
-                    t.rgb565_row(kind, x0, y, [&r, &g, &b], &mut out);
-                    for i in 0..len {
-                        let want =
-                            t.rgb565(kind, x0 + i as u32, y, r[i] as u8, g[i] as u8, b[i] as u8);
-                        assert_eq!(out[i], want, "{m2:?} {kind:?} x0 {x0} y {y} lane {i}");
-                    }
+        each_table_and_kind(|m2, t, kind| {
+            for seed in 0..64i32 {
+                let len = 1 + (seed as usize * 7) % 40;
+                let (x0, y) = (seed as u32 * 5 % 11, seed as u32 % 6);
+                let ch = |k: i32| -> Vec<i32> {
+                    (0..len as i32)
+                        .map(|i| (i * 37 + seed * 101 + k * 59) % 300)
+                        .collect()
+                };
+                let (r, g, b) = (ch(0), ch(1), ch(2));
+                let mut out = vec![0u16; len];
+                t.rgb565_row(kind, x0, y, [&r, &g, &b], &mut out);
+                for i in 0..len {
+                    let want = t.rgb565(kind, x0 + i as u32, y, r[i] as u8, g[i] as u8, b[i] as u8);
+                    assert_eq!(out[i], want, "{m2:?} {kind:?} x0 {x0} y {y} lane {i}");
                 }
             }
-        }
+        });
     }
 
     #[test]
