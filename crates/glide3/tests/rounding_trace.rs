@@ -1,0 +1,68 @@
+//! Where 3dfx's SST-1 Glide 3 rounds an intermediate value to a `float`: replays of
+//! glide-sdk programs (glide3x/sst1/glide3/tests/testNN.c) whose register writes depend
+//! on it, each required to equal 3dfx's trace bit for bit.
+//!
+//! - The parameter differences of the triangle setup (`dpAB`, `dpBC` in gxdraw.c
+//!   `_trisetup`) are `float` variables: test08's W goes from 1/20 to 1/2000, whose
+//!   difference needs more than 24 bits; kept in extended precision, the W gradients
+//!   come out one unit in the last place high.
+
+mod common;
+use common::{assert_prefix, trace};
+use glide::consts::*;
+use glide::get::{fog_generate_exp, FOG_TABLE_SIZE};
+
+/// A tlib `GrVertex`: x, y, ooz, oow, r, g, b, a, z, then TMU s/t/w triples.
+fn vertex(x: f32, y: f32, oow: f32, b: f32) -> [f32; 15] {
+    let mut v = [0.0; 15];
+    v[0] = x;
+    v[1] = y;
+    v[3] = oow;
+    v[6] = b;
+    v
+}
+
+/// test08 (table fog on W): the calls up to and including the first frame's triangle.
+#[test]
+fn test08_fogged_triangle_w_gradients() {
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
+    let mut entries = [0i32; 1];
+    g.get(GR_FOG_TABLE_ENTRIES, 4, &mut entries);
+    assert_eq!(entries[0] as usize, FOG_TABLE_SIZE);
+    g.vertex_layout(GR_PARAM_XY, 0, GR_PARAM_ENABLE);
+    g.vertex_layout(GR_PARAM_RGB, 4 << 2, GR_PARAM_ENABLE);
+    g.vertex_layout(GR_PARAM_Q, 3 << 2, GR_PARAM_ENABLE);
+    g.color_combine(
+        GR_COMBINE_FUNCTION_LOCAL,
+        GR_COMBINE_FACTOR_NONE,
+        GR_COMBINE_LOCAL_ITERATED,
+        GR_COMBINE_OTHER_NONE,
+        false,
+    );
+    g.fog_mode(GR_FOG_WITH_TABLE_ON_W);
+    g.fog_color_value(0xff00_ff00);
+    let mut table = [0u8; FOG_TABLE_SIZE];
+    fog_generate_exp(&mut table, 0.01);
+    g.fog_table(&table);
+    g.buffer_clear(0, 0, 0);
+    let (sx, sy) = (640.0f32, 480.0f32);
+    let a = vertex(0.0 * sx, 0.0 * sy, 1.0 / 20.0, 64.0);
+    let b = vertex(0.016 * sx, 1.0 * sy, 1.0 / 2000.0, 128.0);
+    let c = vertex(1.0 * sx, 0.0208 * sy, 1.0 / 20.0, 64.0);
+    let before = rec.0.borrow().len();
+    g.draw_triangle(&a, &b, &c);
+    let ours = rec.0.borrow().clone();
+    // 6 coordinates, R G B and W (start, d/dx, d/dy), the area.
+    assert_eq!(ours.len() - before, 19);
+    // 3dfx's FdWdX, FdWdY (0x0dc, 0x0fc) are where the rounding of dpBC shows.
+    let tail: Vec<_> = ours[ours.len() - 3..].to_vec();
+    assert_eq!(
+        tail,
+        [
+            common::Op::W(0x0dc, 0x35d7_fea1),
+            common::Op::W(0x0fc, 0xb8d8_573f),
+            common::Op::W(0x100, 0x4895_f338),
+        ]
+    );
+    assert_prefix(&ours, &trace("test08"), "test08 fogged triangle");
+}
