@@ -22,8 +22,11 @@
 //! gradients: those stay as the main primitive set them) and then the alpha start and
 //! gradients. Arithmetic: 3dfx's code ran on the x87; values held in `float`
 //! variables are rounded to `f32` here (each statement that assigns one stores it), the
-//! expression on its right evaluated in x87 extended precision (verified against the
-//! glide-sdk test24 trace for lines: tests/aa_trace.rs).
+//! expression on its right evaluated in x87 extended precision, as the triangle setup's
+//! parameter differences are (draw.rs). The glide-sdk test24 trace (lines,
+//! tests/aa_trace.rs) is matched bit for bit; it is matched too with `dp` kept in
+//! extended precision, so the rounding of `dp` rests on gaa.c's `float dp` and on
+//! test08's triangles, not on a line trace.
 
 use crate::draw::{fetch, fetch_byte, SNAP_BIAS};
 use crate::x87::Ext;

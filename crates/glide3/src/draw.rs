@@ -738,7 +738,8 @@ impl crate::Glide {
                 continue;
             };
             // `dp = pb - pa` is stored to a float variable, then `dp * m` is rounded
-            // once (gdraw.c `_grDrawLineStrip`).
+            // once (gdraw.c `_grDrawLineStrip`). test02's lines match with or without
+            // the rounding of `dp`; it follows the source and test08's triangles.
             let dp = e_f32(value(b, e), pa);
             let dp = (f64::from(dp) * f64::from(m)) as f32;
             if x_major {
