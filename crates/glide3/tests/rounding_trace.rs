@@ -6,6 +6,9 @@
 //!   `_trisetup`) are `float` variables: test08's W goes from 1/20 to 1/2000, whose
 //!   difference needs more than 24 bits; kept in extended precision, the W gradients
 //!   come out one unit in the last place high.
+//! - test38's gamma tables: the program's gamma values are `float` sums (1.3f + 0.1f),
+//!   and its three frames need three key presses, which is why it never ends on an
+//!   empty stdin.
 
 mod common;
 use common::{assert_prefix, trace};
@@ -65,4 +68,31 @@ fn test08_fogged_triangle_w_gradients() {
         ]
     );
     assert_prefix(&ours, &trace("test08"), "test08 fogged triangle");
+}
+
+/// test38 (`guGammaCorrectionRGB`), run with the keys `w`, `e`, `r` (3dfx's three
+/// frames): the `clutData` (0x228) writes of the gamma load `grSstWinOpen` does (1.7)
+/// and of the three the keys make, each channel starting at 1.3 and raised by `0.1f`
+/// (a `float` sum) in turn.
+#[test]
+fn test38_gamma_tables() {
+    const CLUT_DATA: u32 = 0x228;
+    let clut = |ops: &[common::Op]| -> Vec<u32> {
+        ops.iter()
+            .filter_map(|op| match *op {
+                common::Op::W(CLUT_DATA, v) => Some(v),
+                _ => None,
+            })
+            .collect()
+    };
+    let (rec, mut g) = common::open_640x480(GR_ORIGIN_UPPER_LEFT);
+    let (start, up) = (1.3f32, 1.3f32 + 0.1f32);
+    g.gamma_correction_rgb(up, start, start);
+    g.gamma_correction_rgb(up, up, start);
+    g.gamma_correction_rgb(up, up, up);
+    let ours = clut(&rec.0.borrow());
+    let theirs = clut(&trace("test38"));
+    // Four loads of 33 entries each.
+    assert_eq!(theirs.len(), 4 * 33);
+    assert_eq!(ours, theirs);
 }
