@@ -22,13 +22,16 @@
 //!   stored as a `float` (`_GlideRoot.pool.temp1`);
 //! - `ooa = 1 / area`, the deltas and the scaled deltas (`dxAB * ooa` ...) are
 //!   `float`s;
+//! - the parameter differences `dpAB = pa - pb`, `dpBC = pb - pc` are `float`s
+//!   (test08's W, test20, test28's colours);
 //! - each gradient (`dpAB * dyBC - dpBC * dyAB`) is evaluated extended and rounded
 //!   once, when stored to its register.
 //!
 //! Source: 3dfx SST-1 Glide 3 gxdraw.c `_trisetup` (operation order); the rounding
 //! points were found against the glide-sdk traces and are verified bit for bit by
 //! tests/trisetup_trace.rs (test04 Gouraud, test06 W, test14 Z) and
-//! tests/texsetup_trace.rs (7434 console-text triangles: S, T, W, in all 18 traces).
+//! tests/texsetup_trace.rs (7434 console-text triangles: S, T, W, in all 18 traces)
+//! and tests/rounding_trace.rs (test08 W, test28 polygon colours).
 //! Lines (`line`) work from the snapped positions, which the test02 trace matches.
 
 use crate::aa::{AA_LINES, AA_POINTS, AA_TRIANGLES};
