@@ -21,10 +21,15 @@
 //! The edge triangles write the start values of every parameter (not their
 //! gradients: those stay as the main primitive set them) and then the alpha start and
 //! gradients. Arithmetic: 3dfx's code ran on the x87; values held in `float`
-//! variables are rounded to `f32` here, each expression evaluated in `f64` and rounded
-//! once when stored (verified against the glide-sdk test24 trace for lines).
+//! variables are rounded to `f32` here (each statement that assigns one stores it), the
+//! expression on its right evaluated in x87 extended precision, as the triangle setup's
+//! parameter differences are (draw.rs). The glide-sdk test24 trace (lines,
+//! tests/aa_trace.rs) is matched bit for bit; it is matched too with `dp` kept in
+//! extended precision, so the rounding of `dp` rests on gaa.c's `float dp` and on
+//! test08's triangles, not on a line trace.
 
 use crate::draw::{fetch, fetch_byte, SNAP_BIAS};
+use crate::x87::Ext;
 use sst1_regs::addr::*;
 use sst1_regs::FbzMode;
 
@@ -48,6 +53,17 @@ enum Sense {
 /// `f32` product rounded once (x87 product stored to a `float`).
 fn mul(a: f32, b: f32) -> f32 {
     (f64::from(a) * f64::from(b)) as f32
+}
+
+/// `a - b + c` evaluated on the x87 (extended) and stored to a `float` variable.
+/// Non-finite inputs follow IEEE arithmetic in `f64`.
+fn x87_sum(a: f32, b: f32, c: f32) -> f32 {
+    if [a, b, c].iter().all(|v| v.is_finite()) {
+        let e = |v: f32| Ext::from_f64(f64::from(v));
+        e(a).sub(e(b)).add(e(c)).to_f32()
+    } else {
+        (f64::from(a) - f64::from(b) + f64::from(c)) as f32
+    }
 }
 
 impl crate::Glide {
@@ -103,7 +119,9 @@ impl crate::Glide {
             let Some(reg) = self.send_start(e, pa) else {
                 continue;
             };
-            let dp = ((f64::from(pa) - f64::from(crate::draw::value(b, e))) * f64::from(m)) as f32;
+            // `dp` is a `float` variable: the difference is rounded before the product
+            // (gaa.c `_grAADrawLineStrip`).
+            let dp = mul(x87_sum(pa, crate::draw::value(b, e), 0.0), m);
             if x_major {
                 self.hw.wf(reg + 0x20, dp);
                 self.hw.wf(reg + 0x40, 0.0);
@@ -198,7 +216,8 @@ impl crate::Glide {
             self.hw.w(F_START_A, 0);
             w(self, F_VERTEX_BY, y1);
             w(self, F_D_A_DY, a1);
-            let dp = ((f64::from(a1) - f64::from(a2) - f64::from(tmp1)) * f64::from(m)) as f32;
+            // `dp = a1 - a2; dp -= tmp1; dp *= m`, each step stored to the float `dp`.
+            let dp = mul(x87_sum(x87_sum(a1, a2, 0.0), tmp1, 0.0), m);
             w(self, F_D_A_DX, dp);
             w(self, F_TRIANGLE_CMD, m);
             // V1-E-F below the line.
@@ -211,7 +230,7 @@ impl crate::Glide {
             w(self, F_TRIANGLE_CMD, m);
             // V1-V2-F.
             w(self, F_VERTEX_BX, x2);
-            let dp = ((f64::from(a1) - f64::from(a2) + f64::from(tmp2)) * f64::from(m)) as f32;
+            let dp = mul(x87_sum(a1, a2, tmp2), m);
             w(self, F_VERTEX_BY, y2);
             self.start_values(v1);
             w(self, F_D_A_DX, dp);
@@ -232,7 +251,7 @@ impl crate::Glide {
             w(self, F_VERTEX_CX, x2 - 1.0);
             w(self, F_VERTEX_CY, y2);
             self.line_gradients(v1, v2, m, false);
-            let dp = ((f64::from(a1) - f64::from(tmp2) - f64::from(a2)) * f64::from(m)) as f32;
+            let dp = mul(x87_sum(a1, tmp2, -a2), m);
             w(self, F_D_A_DX, a2);
             w(self, F_D_A_DY, dp);
             w(self, F_TRIANGLE_CMD, -m);
@@ -245,7 +264,7 @@ impl crate::Glide {
             w(self, F_TRIANGLE_CMD, m);
             // E-V1-V2 on the right.
             w(self, F_VERTEX_AX, x1 + 1.0);
-            let dp = ((f64::from(a1) - f64::from(a2) + f64::from(tmp1)) * f64::from(m)) as f32;
+            let dp = mul(x87_sum(a1, a2, tmp1), m);
             w(self, F_VERTEX_BX, x1);
             w(self, F_VERTEX_CX, x2);
             self.start_values(v1);
@@ -323,10 +342,8 @@ impl crate::Glide {
             }
         };
         let w = |g: &mut Self, reg: u32, v: f32| g.hw.wf(reg, v);
-        // Expression "(p - q + r) * m" evaluated once and rounded on the store.
-        let lin = |p: f32, q: f32, r: f32, m: f32| {
-            ((f64::from(p) - f64::from(q) + f64::from(r)) * f64::from(m)) as f32
-        };
+        // `dp = p - q + r; dp *= m`: each statement stores the float `dp`.
+        let lin = |p: f32, q: f32, r: f32, m: f32| mul(x87_sum(p, q, r), m);
         match sense {
             Sense::Top => {
                 w(self, F_VERTEX_AX, ax);

@@ -22,13 +22,16 @@
 //!   stored as a `float` (`_GlideRoot.pool.temp1`);
 //! - `ooa = 1 / area`, the deltas and the scaled deltas (`dxAB * ooa` ...) are
 //!   `float`s;
+//! - the parameter differences `dpAB = pa - pb`, `dpBC = pb - pc` are `float`s
+//!   (test08's W, test20, test28's colours);
 //! - each gradient (`dpAB * dyBC - dpBC * dyAB`) is evaluated extended and rounded
 //!   once, when stored to its register.
 //!
 //! Source: 3dfx SST-1 Glide 3 gxdraw.c `_trisetup` (operation order); the rounding
 //! points were found against the glide-sdk traces and are verified bit for bit by
 //! tests/trisetup_trace.rs (test04 Gouraud, test06 W, test14 Z) and
-//! tests/texsetup_trace.rs (7434 console-text triangles: S, T, W, in all 18 traces).
+//! tests/texsetup_trace.rs (7434 console-text triangles: S, T, W, in all 18 traces)
+//! and tests/rounding_trace.rs (test08 W, test28 polygon colours).
 //! Lines (`line`) work from the snapped positions, which the test02 trace matches.
 
 use crate::aa::{AA_LINES, AA_POINTS, AA_TRIANGLES};
@@ -193,21 +196,37 @@ fn x87_recip(area: f32) -> f32 {
     }
 }
 
-/// `(u0 - u1) * su - (w0 - w1) * sw`, every step in x87 extended precision and the
-/// result stored to a `float` (one setup gradient). Infinities and NaN in the
+/// `a - b` computed on the x87 and stored to a `float` variable (IEEE `f64` for
+/// non-finite inputs).
+fn e_f32(a: f32, b: f32) -> f32 {
+    if a.is_finite() && b.is_finite() {
+        Ext::from_f64(f64::from(a))
+            .sub(Ext::from_f64(f64::from(b)))
+            .to_f32()
+    } else {
+        (f64::from(a) - f64::from(b)) as f32
+    }
+}
+
+/// `(u0 - u1) * su - (w0 - w1) * sw` as 3dfx's build computes one setup gradient:
+/// the parameter differences `dpAB`, `dpBC` are `float` variables in `_trisetup`
+/// (gxdraw.c), so each is rounded to a `float` (from the x87 difference); the two
+/// products and their difference stay in x87 extended precision and the result is
+/// rounded once more, when stored to its register. Infinities and NaN in the
 /// inputs follow IEEE arithmetic instead.
-/// UNVERIFIED: 3dfx's build may round `u0 - u1` or `w0 - w1` to float between the
-/// d/dX and d/dY stores; no traced parameter difference needs more than 24 bits.
+/// Source of the rounding of the differences: the glide-sdk trace test08 (table fog
+/// on W, `1/20 - 1/2000` needs more than 24 bits), pinned by tests/fog_trace.rs.
 fn x87_gradient(u: (f32, f32), su: f32, w: (f32, f32), sw: f32) -> f32 {
     let all = [u.0, u.1, su, w.0, w.1, sw];
     if all.iter().all(|v| v.is_finite()) {
         let e = |v: f32| Ext::from_f64(f64::from(v));
-        let du = e(u.0).sub(e(u.1));
-        let dw = e(w.0).sub(e(w.1));
+        let du = e(e_f32(u.0, u.1));
+        let dw = e(e_f32(w.0, w.1));
         du.mul(e(su)).sub(dw.mul(e(sw))).to_f32()
     } else {
         let f = f64::from;
-        ((f(u.0) - f(u.1)) * f(su) - (f(w.0) - f(w.1)) * f(sw)) as f32
+        let (du, dw) = (e_f32(u.0, u.1), e_f32(w.0, w.1));
+        (f(du) * f(su) - f(dw) * f(sw)) as f32
     }
 }
 
@@ -721,8 +740,11 @@ impl crate::Glide {
             let Some(reg) = self.send_start(e, pa) else {
                 continue;
             };
-            // Extended-precision difference times the f32 reciprocal, rounded once.
-            let dp = ((f64::from(value(b, e)) - f64::from(pa)) * f64::from(m)) as f32;
+            // `dp = pb - pa` is stored to a float variable, then `dp * m` is rounded
+            // once (gdraw.c `_grDrawLineStrip`). test02's lines match with or without
+            // the rounding of `dp`; it follows the source and test08's triangles.
+            let dp = e_f32(value(b, e), pa);
+            let dp = (f64::from(dp) * f64::from(m)) as f32;
             if x_major {
                 self.hw.wf(reg + DPDX, dp);
                 self.hw.wf(reg + DPDY, 0.0);
