@@ -90,25 +90,30 @@ pub enum SaturateOperand {
 /// How the destination is widened for pixels written with the 2x2 dither (`fbzMode`
 /// bit 8 and bit 11 set).
 ///
-/// The blend unit sees `fbzMode`, as its dither subtraction must (it reads the matrix
-/// that bit 11 selects). On the one dump whose blended pixels are 2x2-dithered
-/// (`stress_random/front`: 2x2-dithered pixels blended again over 2x2-dithered
-/// destinations) the three references agree on 109 pixels that replication of the high
-/// bits misses and zero fill gives: with `PerProduct` and `ZeroFill` the hardware model
-/// misses 36 consensus pixels over the conformance suite, with `SameAsArithmetic` 145
-/// (184,161 against 184,544 majority). No other dump changes. Zero fill is DOSBox
-/// Staging's widening for every pixel; MAME dithers these pixels with another matrix and
-/// 86Box divides by 255, and both still land on the same pixels, so the evidence is the
-/// agreement, not one emulator's code.
+/// Every reference widens these destinations as it widens any other
+/// ([`Dither2x2Blend::SameAsArithmetic`]), and so does the hardware model: one widening
+/// for every pixel, as one blend unit would compute it. Zero fill for 2x2-dithered
+/// destinations only was the hardware model's default until 2026-12-02. It had been
+/// chosen for one dump, `stress_random/front`, where the three references agree on 109
+/// pixels that replicated widening misses and zero fill gives; but they reach them each
+/// by its own path (DOSBox Staging zero-fills every pixel, MAME dithers with its own 2x2
+/// matrix, 86Box divides by 255), a coincidence rather than evidence. On 31 generated
+/// scenes of random states (`voodoo gen random-states`, seeds 11 to 14, 21 to 23, 31 to
+/// 42 and 51 to 62, judged against the three reference models' output; docs/accuracy.md,
+/// "Unseen scenes") zero fill missed 2,715 more pixels on which the three agree than
+/// replicated widening (1,028, 1,560 and 127 more in three scenes, the same elsewhere),
+/// and no scene did better with it; on `stress_random` replicated widening misses the
+/// 109 again (listed in `traces/hardware-budget.toml`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Dither2x2Blend {
-    /// The 565 destination is widened by zero fill, whatever [`BlendProfile::arithmetic`]
-    /// widens other pixels by (the hardware model).
+    /// [`BlendProfile::arithmetic`]'s widening, as for every other pixel (the hardware
+    /// model, and what each reference emulator does).
     #[default]
-    ZeroFill,
-    /// [`BlendProfile::arithmetic`]'s widening, as for every other pixel (what each
-    /// reference emulator does).
     SameAsArithmetic,
+    /// The 565 destination is widened by zero fill, whatever [`BlendProfile::arithmetic`]
+    /// widens other pixels by (an experiment; the hardware model's default before
+    /// 2026-12-02).
+    ZeroFill,
 }
 
 /// The alpha-blend unit's disputed behaviours.
@@ -125,7 +130,7 @@ impl BlendProfile {
     pub const HARDWARE: BlendProfile = BlendProfile {
         arithmetic: BlendArithmetic::PerProduct,
         saturate: SaturateOperand::Source,
-        dither_2x2: Dither2x2Blend::ZeroFill,
+        dither_2x2: Dither2x2Blend::SameAsArithmetic,
     };
 }
 
@@ -719,18 +724,21 @@ mod tests {
     fn dither_2x2_pairing() {
         let i = input();
         let d2 = DITHER | 1 << 11;
-        // Default: 2x2-dithered destinations are widened by zero fill; with
-        // `PerProduct` that is DOSBox Staging's arithmetic.
-        assert_eq!(blend(PerProduct, 1, 5, d2, &i), [175, 137, 68]);
-        assert_eq!(blend(Dosbox, 1, 5, d2, &i), [175, 137, 68]);
-        // Bit 11 without dithering (bit 8) is not 2x2 dithering.
+        // Default: a 2x2-dithered destination is widened as any other.
+        assert_eq!(blend(PerProduct, 1, 5, d2, &i), [178, 138, 69]);
         assert_eq!(blend(PerProduct, 1, 5, 1 << 11, &i), [178, 138, 69]);
-        let same = BlendProfile {
+        // `ZeroFill`: zero fill for 2x2-dithered destinations only; with `PerProduct`
+        // that is DOSBox Staging's arithmetic.
+        let zero_fill = BlendProfile {
             arithmetic: PerProduct,
-            dither_2x2: Dither2x2Blend::SameAsArithmetic,
+            dither_2x2: Dither2x2Blend::ZeroFill,
             ..Default::default()
         };
-        let c = alpha_blend(am(1, 5, 0, 0), FbzMode(d2), &i, same);
+        let c = alpha_blend(am(1, 5, 0, 0), FbzMode(d2), &i, zero_fill);
+        assert_eq!([c.r, c.g, c.b], [175, 137, 68]);
+        assert_eq!(blend(Dosbox, 1, 5, d2, &i), [175, 137, 68]);
+        // Bit 11 without dithering (bit 8) is not 2x2 dithering.
+        let c = alpha_blend(am(1, 5, 0, 0), FbzMode(1 << 11), &i, zero_fill);
         assert_eq!([c.r, c.g, c.b], [178, 138, 69]);
     }
 
