@@ -10,6 +10,7 @@
 
 mod bench;
 mod chart;
+mod demo;
 mod plot;
 
 use std::io::IsTerminal;
@@ -24,13 +25,9 @@ use sst1_trace::judge;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
     encode_binary, execute_references_stream, execute_stream, load_trace, open_trace, quote,
-    read_file_bounded, rgb565_to_rgb8, stream_trace, vote_buffer, write_file_replacing, write_text,
-    Dump, DumpDir, OpCounts, ReplayError, TraceOp, TraceStream,
+    read_file_bounded, rgb565_to_rgb8, vote_buffer, write_file_replacing, write_text, Dump,
+    DumpDir, OpCounts, ReplayError, TraceOp, TraceStream,
 };
-
-/// The trace `voodoo demo` replays: Gouraud-shaded triangles with 4×4 dithering.
-const DEMO_TRACE: &[u8] =
-    include_bytes!("../../../traces/conformance/traces/gouraud_dither4.trace.gz");
 
 #[derive(Parser)]
 #[command(
@@ -125,7 +122,8 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
     },
-    /// Replay the bundled demo trace and write the picture as a PNG.
+    /// Draw the demo scene through the Glide 3 front-end (mipmapped textures, a light
+    /// map, fog, transparency) and write the picture as a PNG.
     Demo {
         /// Where to write the picture.
         #[arg(long, default_value = "voodoo-demo.png")]
@@ -667,7 +665,12 @@ fn describe_config(c: sst1_board::BoardConfig) -> String {
 /// temporary file renamed over `path`.
 fn write_front_png(replayed: &Replayed, path: &Path) -> Result<(u32, u32), String> {
     let (width, height) = replayed.board.display_size();
-    let pixels = &replayed.front;
+    write_png(width, height, &replayed.front, path)
+}
+
+/// Writes `width * height` RGB565 pixels as an RGB PNG (expanded by bit replication),
+/// through a temporary file renamed over `path`.
+fn write_png(width: u32, height: u32, pixels: &[u16], path: &Path) -> Result<(u32, u32), String> {
     let rgb: Vec<u8> = pixels.iter().flat_map(|&p| rgb565_to_rgb8(p)).collect();
     let image = image::RgbImage::from_raw(width, height, rgb)
         .ok_or_else(|| format!("front buffer is not {width}x{height}"))?;
@@ -946,19 +949,12 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
 }
 
 fn demo(png: &Path) -> Result<(), String> {
-    let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
-    let replayed = run(
-        stream,
-        Some(OneBoard::exact(AccuracyProfile::default())),
-        default_threads(),
-        Session::default(),
-        |_| Ok(()),
-    )?;
-    let (w, h) = write_front_png(&replayed, png)?;
-    println!(
-        "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",
-        png.display()
-    );
+    let picture = demo::render_on(Board::new(demo::config()))?;
+    let (w, h) = write_png(picture.width, picture.height, &picture.pixels, png)?;
+    println!("wrote {} ({w}x{h}), drawn through Glide 3:", png.display());
+    for line in glide::demo::DESCRIPTION {
+        println!("  {line}");
+    }
     Ok(())
 }
 

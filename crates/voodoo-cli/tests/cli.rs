@@ -39,16 +39,42 @@ const SMALL: &str = "# a comment\n\
                      w 0x400000 0x12345678\n\
                      dump front small_front.raw\n";
 
+/// The demo's blessed front buffer (traces/demo/demo_front.raw.gz).
+fn demo_golden() -> Vec<u16> {
+    use std::io::Read;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces/demo/demo_front.raw.gz");
+    let mut bytes = Vec::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(path).unwrap())
+        .read_to_end(&mut bytes)
+        .unwrap();
+    bytes
+        .chunks_exact(2)
+        .map(|b| u16::from_le_bytes([b[0], b[1]]))
+        .collect()
+}
+
 #[test]
 fn demo_writes_a_png() {
     let dir = scratch("demo");
     let out = stdout(&voodoo(&dir, &["demo"]));
-    assert_eq!(
-        out,
-        "wrote voodoo-demo.png (640x480): Gouraud-shaded triangles, 4x4 dither\n"
-    );
-    let image = image::open(dir.join("voodoo-demo.png")).unwrap();
+    let mut want = "wrote voodoo-demo.png (640x480), drawn through Glide 3:\n".to_string();
+    for line in glide::demo::DESCRIPTION {
+        want += &format!("  {line}\n");
+    }
+    assert_eq!(out, want);
+    // The PNG is the demo's front buffer, blessed in traces/demo (glide3's demo_scene
+    // test), each RGB565 pixel widened by bit replication.
+    let image = image::open(dir.join("voodoo-demo.png")).unwrap().to_rgb8();
     assert_eq!((image.width(), image.height()), (640, 480));
+    let golden = demo_golden();
+    let want: Vec<u8> = golden
+        .iter()
+        .flat_map(|&p| sst1_trace::rgb565_to_rgb8(p))
+        .collect();
+    assert!(
+        image.as_raw() == &want,
+        "the PNG is not the blessed demo frame"
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 
