@@ -77,3 +77,36 @@ pub fn render_on(board: Board) -> Result<Picture, String> {
         pixels: board.dump_buffer(BufferKind::Front),
     })
 }
+
+/// Shows `picture` in a window until the user closes it or presses Escape or Q (or,
+/// with `VOODOO_WINDOW_CAPTURE`, until the window has written what it presented).
+/// Where no window opens, one line on stderr says why and where the PNG is; `Err` only
+/// when the capture cannot be written.
+pub fn show(picture: &Picture, png: &std::path::Path) -> Result<(), String> {
+    use sst1_window::{Event, Frame, Key, Window};
+    let window = match Window::open("voodoo demo (Esc or Q: quit)") {
+        Ok(window) => window,
+        Err(why) => {
+            eprintln!(
+                "voodoo: no window: {why}; the picture is in {}",
+                png.display()
+            );
+            return Ok(());
+        }
+    };
+    window.show(Frame::from_rgb565(
+        picture.width as usize,
+        picture.height as usize,
+        &picture.pixels,
+    ));
+    loop {
+        match window.next_event() {
+            Some(Event::Key(Key::Escape | Key::Char('q' | 'Q')))
+            | Some(Event::Closed)
+            | Some(Event::Captured(Ok(())))
+            | None => return Ok(()),
+            Some(Event::Captured(Err(e))) => return Err(format!("VOODOO_WINDOW_CAPTURE: {e}")),
+            Some(Event::Key(_)) => {}
+        }
+    }
+}

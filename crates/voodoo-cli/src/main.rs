@@ -11,6 +11,7 @@
 mod bench;
 mod chart;
 mod demo;
+mod play;
 mod plot;
 
 use std::io::IsTerminal;
@@ -128,6 +129,23 @@ enum Command {
         /// Where to write the picture.
         #[arg(long, default_value = "voodoo-demo.png")]
         png: PathBuf,
+        /// Only write the PNG: no window, even where a display exists.
+        #[arg(long)]
+        no_window: bool,
+    },
+    /// Play a trace in a window: step by frame or by drawing command, show the front,
+    /// back or depth buffer of each model, mark where it breaks golden dumps (keys in the
+    /// title bar).
+    Play {
+        /// Trace file: text or binary, optionally gzip-compressed.
+        trace: PathBuf,
+        /// Golden dumps to mark differences to: `check`'s folder (one folder per
+        /// reference), or a folder of the dumps themselves.
+        #[arg(long, value_name = "DIR")]
+        goldens: Option<PathBuf>,
+        /// The model shown first (M cycles through them).
+        #[arg(long, value_enum, default_value = "hardware")]
+        model: Model,
     },
     /// Summarise a trace: board, writes, triangles, fills, swaps, registers touched.
     Info {
@@ -290,6 +308,17 @@ enum Model {
 }
 
 impl Model {
+    /// What `voodoo play` shows of the model.
+    fn view(self) -> play::View {
+        match self {
+            Model::Hardware | Model::Single => play::View::Hardware,
+            Model::Vote => play::View::Vote,
+            Model::Mame => play::View::Reference(Reference::Mame),
+            Model::DosboxStaging => play::View::Reference(Reference::DosboxStaging),
+            Model::Box86 => play::View::Reference(Reference::Box86),
+        }
+    }
+
     /// The accuracy profile of a one-board model; `None` for the vote.
     fn profile(self) -> Option<AccuracyProfile> {
         match self {
@@ -380,7 +409,12 @@ fn main() -> ExitCode {
             profile,
         } => resolve_model(model, profile.as_deref())
             .and_then(|profile| check(&trace, &goldens, profile)),
-        Command::Demo { png } => demo(&png),
+        Command::Demo { png, no_window } => demo(&png, !no_window),
+        Command::Play {
+            trace,
+            goldens,
+            model,
+        } => play::run(&trace, model.view(), goldens),
         Command::Info { trace } => info(&trace),
         Command::Reg { register, value } => reg(&register, &value),
         Command::Convert { input, output } => convert(&input, &output),
@@ -948,12 +982,15 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     Ok(())
 }
 
-fn demo(png: &Path) -> Result<(), String> {
+fn demo(png: &Path, window: bool) -> Result<(), String> {
     let picture = demo::render_on(Board::new(demo::config()))?;
     let (w, h) = write_png(picture.width, picture.height, &picture.pixels, png)?;
     println!("wrote {} ({w}x{h}), drawn through Glide 3:", png.display());
     for line in glide::demo::DESCRIPTION {
         println!("  {line}");
+    }
+    if window {
+        demo::show(&picture, png)?;
     }
     Ok(())
 }

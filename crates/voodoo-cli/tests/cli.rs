@@ -56,7 +56,7 @@ fn demo_golden() -> Vec<u16> {
 #[test]
 fn demo_writes_a_png() {
     let dir = scratch("demo");
-    let out = stdout(&voodoo(&dir, &["demo"]));
+    let out = stdout(&voodoo(&dir, &["demo", "--no-window"]));
     let mut want = "wrote voodoo-demo.png (640x480), drawn through Glide 3:\n".to_string();
     for line in glide::demo::DESCRIPTION {
         want += &format!("  {line}\n");
@@ -75,6 +75,32 @@ fn demo_writes_a_png() {
         image.as_raw() == &want,
         "the PNG is not the blessed demo frame"
     );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn demo_without_a_display_says_so_and_writes_the_png() {
+    let dir = scratch("demo-headless");
+    let output = Command::new(env!("CARGO_BIN_EXE_voodoo"))
+        .args(["demo", "--png", "d.png"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    assert!(output.status.success());
+    let why = if cfg!(feature = "window") {
+        "no display is available (DISPLAY and WAYLAND_DISPLAY are unset)"
+    } else {
+        "this build has no window (it was built without the `window` feature)"
+    };
+    assert_eq!(
+        String::from_utf8_lossy(&output.stderr),
+        format!("voodoo: no window: {why}; the picture is in d.png\n")
+    );
+    let image = image::open(dir.join("d.png")).unwrap();
+    assert_eq!((image.width(), image.height()), (640, 480));
     std::fs::remove_dir_all(dir).unwrap();
 }
 
