@@ -206,6 +206,7 @@ impl Player {
     }
 
     /// Ops run so far, and the trace's length.
+    #[cfg(test)]
     pub fn position(&self) -> (usize, usize) {
         (self.pos, self.ops.len())
     }
@@ -215,10 +216,12 @@ impl Player {
         self.frame_ends.partition_point(|&e| e <= self.pos)
     }
 
+    #[cfg(test)]
     pub fn view(&self) -> View {
         self.view
     }
 
+    #[cfg(test)]
     pub fn shown(&self) -> Shown {
         self.shown
     }
@@ -444,8 +447,242 @@ pub fn run(trace: &Path, view: View, goldens: Option<PathBuf>) -> Result<(), Str
                 }
             }
             Some(Event::Captured(Err(e))) => return Err(format!("VOODOO_WINDOW_CAPTURE: {e}")),
-            Some(Event::Captured(Ok(()))) => {}
-            Some(Event::Closed) | None => return Ok(()),
+            // `VOODOO_WINDOW_CAPTURE` has the first frame: done.
+            Some(Event::Captured(Ok(()))) | Some(Event::Closed) | None => return Ok(()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sst1_trace::{execute, load_trace, DumpBuffer};
+
+    fn repo(path: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../..")
+            .join(path)
+    }
+
+    /// One front buffer, 23 triangles after a fast fill, one swap, then two dumps.
+    fn gouraud() -> (Vec<TraceOp>, BoardConfig) {
+        let t = load_trace(&repo("traces/conformance/traces/gouraud_dither4.trace.gz")).unwrap();
+        let config = t.board_config();
+        (t.ops, config)
+    }
+
+    /// `buffer` of a fresh board of `profile` after `ops`.
+    fn direct(
+        ops: &[TraceOp],
+        config: BoardConfig,
+        r: Option<Reference>,
+        kind: BufferKind,
+    ) -> Vec<u16> {
+        let mut board = match r {
+            Some(r) => board_of(config, r),
+            None => Board::new(config),
+        };
+        execute(ops, &mut board, |_| {});
+        board.dump_buffer(kind)
+    }
+
+    fn write(addr: u32) -> TraceOp {
+        TraceOp::Write { addr, value: 0 }
+    }
+
+    fn dump() -> TraceOp {
+        TraceOp::Dump {
+            buffer: DumpBuffer::Front,
+            file: "x.raw".into(),
+        }
+    }
+
+    #[test]
+    fn frames_end_at_swaps_and_lone_dumps_commands_at_each_drawing_op() {
+        // swap, dump, dump, triangle, ftriangle, fastfill, dump, swap, a plain write.
+        let ops = vec![
+            write(0x128),
+            dump(),
+            dump(),
+            write(0x080),
+            write(0x100),
+            write(0x124),
+            dump(),
+            write(0x128),
+            write(0x110),
+        ];
+        let (frames, commands) = ends(&ops);
+        assert_eq!(frames, [3, 7, 8]);
+        assert_eq!(commands, [1, 2, 3, 4, 5, 6, 7, 8]);
+    }
+
+    #[test]
+    fn a_frame_step_shows_the_swapped_frame_exactly() {
+        let (ops, config) = gouraud();
+        let dumps = execute(&ops, &mut Board::new(config), |_| {});
+        let mut p = Player::new(ops.clone(), config, View::Hardware, None);
+        assert_eq!((p.position(), p.frame_number()), ((0, ops.len()), 0));
+        p.act(Action::NextFrame);
+        // Through the swap and both dumps after it: the end of the trace.
+        assert_eq!(
+            (p.position(), p.frame_number()),
+            ((ops.len(), ops.len()), 1)
+        );
+        let (w, h, front) = p.buffer();
+        assert_eq!((w, h), (640, 480));
+        assert_eq!(front, dumps[0].data);
+        let (frame, failing) = p.render();
+        assert_eq!(failing, None);
+        assert_eq!(
+            frame.pixels,
+            dumps[0]
+                .data
+                .iter()
+                .map(|&v| sst1_window::xrgb(v))
+                .collect::<Vec<_>>()
+        );
+        p.act(Action::Show(Shown::Depth));
+        assert_eq!(p.shown(), Shown::Depth);
+        let grey: Vec<u32> = dumps[1]
+            .data
+            .iter()
+            .map(|&d| u32::from(d >> 8) * 0x0001_0101)
+            .collect();
+        assert_eq!(p.render().0.pixels, grey);
+        // No frame past the last: the player stays.
+        p.act(Action::NextFrame);
+        assert_eq!(p.position(), (ops.len(), ops.len()));
+        p.act(Action::PreviousFrame);
+        assert_eq!((p.position().0, p.frame_number()), (0, 0));
+    }
+
+    #[test]
+    fn command_steps_stop_after_each_drawing_op_and_go_back_one() {
+        let (ops, config) = gouraud();
+        let mut p = Player::new(ops.clone(), config, View::Hardware, None);
+        p.act(Action::Show(Shown::Back));
+        let mut stops = Vec::new();
+        loop {
+            let at = p.position().0;
+            p.act(Action::NextCommand);
+            if p.position().0 == at {
+                break;
+            }
+            stops.push(p.position().0);
+            // Exactly what a fresh board shows after the same ops.
+            assert_eq!(
+                p.buffer().2,
+                direct(&ops[..p.position().0], config, None, BufferKind::Back)
+            );
+        }
+        // A fast fill, 23 triangles, the swap and two dumps.
+        assert_eq!(stops.len(), 27);
+        assert_eq!(*stops.last().unwrap(), ops.len());
+        p.act(Action::PreviousCommand);
+        assert_eq!(p.position().0, stops[25]);
+        p.act(Action::PreviousCommand);
+        assert_eq!(p.position().0, stops[24]);
+        assert_eq!(p.frame_number(), 0);
+        assert_eq!(
+            p.buffer().2,
+            direct(&ops[..stops[24]], config, None, BufferKind::Back)
+        );
+        p.act(Action::Restart);
+        assert_eq!(p.position().0, 0);
+    }
+
+    #[test]
+    fn every_model_shows_its_own_board_and_the_vote_votes() {
+        let (ops, config) = gouraud();
+        let mut p = Player::new(ops.clone(), config, View::Hardware, None);
+        // Stop after the 10th triangle, mid-frame, on the back buffer.
+        for _ in 0..11 {
+            p.act(Action::NextCommand);
+        }
+        p.act(Action::Show(Shown::Back));
+        let at = p.position().0;
+        let refs = Reference::ALL.map(|r| direct(&ops[..at], config, Some(r), BufferKind::Back));
+        let mut seen = vec![p.view()];
+        for _ in 0..View::ALL.len() {
+            let want = match p.view() {
+                View::Hardware => direct(&ops[..at], config, None, BufferKind::Back),
+                View::Vote => sst1_board::vote(&refs[0], &refs[1], &refs[2]),
+                View::Reference(r) => {
+                    refs[Reference::ALL.iter().position(|&x| x == r).unwrap()].clone()
+                }
+            };
+            assert_eq!(p.buffer().2, want, "{}", p.view().name());
+            p.act(Action::NextModel);
+            seen.push(p.view());
+        }
+        assert_eq!(seen, [View::ALL.to_vec(), vec![View::Hardware]].concat());
+    }
+
+    #[test]
+    fn the_diff_marks_exactly_the_pixels_off_the_goldens() {
+        let (ops, config) = gouraud();
+        let dumps = execute(&ops, &mut Board::new(config), |_| {});
+        // A folder with one golden: ours with two pixels changed.
+        let dir = std::env::temp_dir().join(format!("voodoo-play-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut golden = dumps[0].data.clone();
+        golden[5] ^= 0x0800;
+        golden[640 * 100 + 7] ^= 0x0001;
+        std::fs::write(
+            dir.join("gouraud_dither4_front.raw"),
+            golden
+                .iter()
+                .flat_map(|v| v.to_le_bytes())
+                .collect::<Vec<u8>>(),
+        )
+        .unwrap();
+        let mut p = Player::new(ops, config, View::Hardware, Some(dir.clone()));
+        p.act(Action::NextFrame);
+        let (frame, failing) = p.render();
+        assert_eq!(failing, Some(2));
+        for (i, (&px, &ours)) in frame.pixels.iter().zip(&dumps[0].data).enumerate() {
+            let want = if i == 5 || i == 640 * 100 + 7 {
+                CONSENSUS_FAIL
+            } else {
+                (sst1_window::xrgb(ours) >> 1) & 0x007f_7f7f
+            };
+            assert_eq!(px, want, "pixel {i}");
+        }
+        assert!(p
+            .title("t", failing)
+            .starts_with("voodoo play t: frame 1, op 611/611, hardware front, 2 pixels off gouraud_dither4_front.raw | "));
+        // The depth dump has no golden here; G turns the marks off.
+        p.act(Action::Show(Shown::Depth));
+        assert_eq!(p.render().1, None);
+        p.act(Action::Show(Shown::Front));
+        p.act(Action::ToggleDiff);
+        assert_eq!(p.render().1, None);
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn the_conformance_goldens_judge_the_hardware_model_clean() {
+        let (ops, config) = gouraud();
+        let mut p = Player::new(
+            ops,
+            config,
+            View::Hardware,
+            Some(repo("traces/conformance/golden")),
+        );
+        p.act(Action::NextFrame);
+        assert_eq!(p.render().1, Some(0));
+    }
+
+    #[test]
+    fn keys_map_to_actions() {
+        use sst1_window::Key;
+        assert_eq!(Action::of(&Key::Right), Some(Action::NextFrame));
+        assert_eq!(Action::of(&Key::Char('n')), Some(Action::NextCommand));
+        assert_eq!(
+            Action::of(&Key::Char('d')),
+            Some(Action::Show(Shown::Depth))
+        );
+        assert_eq!(Action::of(&Key::Char('q')), Some(Action::Quit));
+        assert_eq!(Action::of(&Key::Char('z')), None);
     }
 }
