@@ -11,8 +11,10 @@
 //! * Two rows of textured, Gouraud-lit pillars and the floor, depth-buffered on W,
 //!   fading into linear table fog (`GR_FOG_WITH_TABLE_ON_W`) the colour of the horizon.
 //! * An alpha-blended crystal floating between the pillars (its far faces drawn first,
-//!   then its near ones, without writing depth), the pillars and floor showing through.
-//! * A sky gradient behind, unfogged; the whole frame 16-bit with 4x4 dithering.
+//!   then its near ones, without writing depth), the pillars and floor showing through,
+//!   and behind it two panes of tinted glass between pillars, drawn before it.
+//! * A sky gradient behind, unfogged, with stars (`grDrawPoint`); the whole frame
+//!   16-bit with 4x4 dithering.
 //!
 //! [`draw`] draws it on an open 640x480 context; the caller swaps. Everything is
 //! computed from fixed numbers with plain arithmetic (no libm calls), so the frame is
@@ -33,8 +35,8 @@ pub const DESCRIPTION: &[&str] = &[
     "a stone floor with a 256x256 mipmapped texture (9 levels, bilinear) receding to the horizon",
     "a light map on the second TMU modulating the floor texture (warm pools, a cyan glow)",
     "textured Gouraud-lit pillars, depth-buffered on W, fading into linear table fog",
-    "an alpha-blended crystal floating between the pillars",
-    "an unfogged sky gradient; 16-bit colour with 4x4 dithering",
+    "an alpha-blended crystal floating between the pillars, and two panes of tinted glass",
+    "an unfogged sky gradient with stars; 16-bit colour with 4x4 dithering",
 ];
 
 /// Camera: the eye is `EYE_Y` above the floor at x = z = 0, looking down +z; the
@@ -431,6 +433,27 @@ pub fn draw(g: &mut Glide) {
         ],
     );
 
+    // Stars in the dark top of the sky, fainter towards the haze.
+    for i in 0..90u32 {
+        let x = (hash(i, 1, 31) % 640) as f32;
+        let y = (hash(i, 2, 31) % 130) as f32;
+        let k = (1.0 - y / 150.0) * (0.5 + 0.5 * noise(i, 3, 31));
+        let star = [255.0 * k, 240.0 * k, 210.0 * k];
+        g.draw_point(&[
+            x + 0.5,
+            y + 0.5,
+            sky_oow * 1.5,
+            star[0],
+            star[1],
+            star[2],
+            255.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        ]);
+    }
+
     // Fog from here on: linear in w from near the eye to the end of the floor.
     let mut fog = [0u8; 64];
     crate::get::fog_generate_linear(&mut fog, 3.0, FAR_Z * 0.85);
@@ -517,6 +540,7 @@ pub fn draw(g: &mut Glide) {
         GR_BLEND_ZERO,
     );
     g.depth_mask(false);
+    panes(g);
     crystal(g);
     g.depth_mask(true);
     g.alpha_blend_function(GR_BLEND_ONE, GR_BLEND_ZERO, GR_BLEND_ONE, GR_BLEND_ZERO);
@@ -555,6 +579,26 @@ fn pillar(g: &mut Glide, x: f32, z: f32, side: f32) {
             vertex([xi, 0.0, z0], dim(foot), 255.0, [0.0, t_top], no_light),
         ],
     );
+}
+
+/// Two panes of tinted glass between the second and third pillar of each row (behind
+/// the crystal, so drawn before it), clearer at the foot than at the top.
+fn panes(g: &mut Glide) {
+    let (z0, z1) = (PILLAR_Z[1] + PILLAR_HALF, PILLAR_Z[2] - PILLAR_HALF);
+    let (y0, y1) = (0.0, PILLAR_HEIGHT * 0.8);
+    for (side, tint) in [(-1.0f32, [255.0, 170.0, 60.0]), (1.0, [90.0, 200.0, 120.0])] {
+        let x = side * (PILLAR_X - PILLAR_HALF);
+        let v = |y: f32, z: f32, a: f32| vertex([x, y, z], tint, a, [0.0; 2], [0.0; 2]);
+        quad(
+            g,
+            &[
+                v(y1, z0, 170.0),
+                v(y1, z1, 170.0),
+                v(y0, z1, 60.0),
+                v(y0, z0, 60.0),
+            ],
+        );
+    }
 }
 
 /// The crystal: an octahedron turned 30 degrees about its vertical axis, each face
