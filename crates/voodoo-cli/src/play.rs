@@ -421,6 +421,14 @@ fn golden_rules(dir: &Path, file: &str) -> Option<Vec<Rule>> {
 pub fn run(trace: &Path, view: View, goldens: Option<PathBuf>) -> Result<(), String> {
     use sst1_window::{Event, Window};
     let loaded = sst1_trace::load_trace(trace).map_err(|e| e.to_string())?;
+    if let Some(dir) = &goldens {
+        if !std::fs::metadata(dir)
+            .map_err(|e| format!("goldens folder {}: {e}", dir.display()))?
+            .is_dir()
+        {
+            return Err(format!("goldens folder {}: not a folder", dir.display()));
+        }
+    }
     let config = loaded.board_config();
     let name = trace.file_name().map_or_else(
         || trace.display().to_string(),
@@ -428,7 +436,7 @@ pub fn run(trace: &Path, view: View, goldens: Option<PathBuf>) -> Result<(), Str
     );
     let mut player = Player::new(loaded.ops, config, view, goldens);
     let window = Window::open(&format!("voodoo play {name}"))
-        .map_err(|why| format!("voodoo play needs a window: {why}"))?;
+        .map_err(|why| format!("play needs a window: {why}"))?;
     player.act(Action::NextFrame);
     let show = |player: &Player| {
         let (frame, failing) = player.render();

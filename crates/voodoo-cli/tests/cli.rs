@@ -104,6 +104,60 @@ fn demo_without_a_display_says_so_and_writes_the_png() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// `voodoo ARGS` in `dir` with no display; its exit status and stderr.
+fn headless(dir: &Path, args: &[&str]) -> (bool, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_voodoo"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    (
+        output.status.success(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn play_checks_its_inputs_then_needs_a_window() {
+    let dir = scratch("play");
+    std::fs::write(dir.join("bad.trace"), "w 0x000124 0\nbogus line\n").unwrap();
+    std::fs::write(dir.join("ok.trace"), "w 0x000124 0\n").unwrap();
+    assert_eq!(
+        headless(&dir, &["play", "bad.trace"]),
+        (
+            false,
+            "voodoo: bad.trace:2: unknown command `bogus`; expected config, pci, w, r, wait or dump\n"
+                .into()
+        )
+    );
+    let (ok, err) = headless(&dir, &["play", "missing.trace"]);
+    assert!(!ok);
+    assert!(err.starts_with("voodoo: missing.trace: "), "{err}");
+    let (ok, err) = headless(&dir, &["play", "ok.trace", "--goldens", "nowhere"]);
+    assert!(!ok);
+    assert!(err.starts_with("voodoo: goldens folder nowhere: "), "{err}");
+    assert_eq!(
+        headless(&dir, &["play", "ok.trace", "--goldens", "ok.trace"]),
+        (
+            false,
+            "voodoo: goldens folder ok.trace: not a folder\n".into()
+        )
+    );
+    let why = if cfg!(feature = "window") {
+        "no display is available (DISPLAY and WAYLAND_DISPLAY are unset)"
+    } else {
+        "this build has no window (it was built without the `window` feature)"
+    };
+    assert_eq!(
+        headless(&dir, &["play", "ok.trace"]),
+        (false, format!("voodoo: play needs a window: {why}\n"))
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
 #[test]
 fn info_summarises() {
     let dir = scratch("info");
