@@ -6,6 +6,7 @@ use std::num::NonZeroU32;
 use std::panic::{self, AssertUnwindSafe};
 use std::path::PathBuf;
 use std::rc::Rc;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender, SyncSender};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 use std::time::Duration;
@@ -18,22 +19,27 @@ use winit::keyboard::{Key as WinitKey, NamedKey};
 use winit::platform::x11::EventLoopBuilderExtX11;
 use winit::window::{Window as WinitWindow, WindowId};
 
-/// The newest frame the window has not taken yet.
-type Slot = Arc<Mutex<Option<Frame>>>;
+/// The newest frame the window has not taken yet, and the session that showed it.
+type Slot = Arc<Mutex<Option<(u64, Frame)>>>;
+
+/// The number of the next session (sessions are told apart by it, so a session that
+/// ends after a newer one began cannot close the newer one's window).
+static NEXT_SESSION: AtomicU64 = AtomicU64::new(1);
 
 /// What a session tells the window thread.
 enum Msg {
-    /// A new session: its title and where its events go. Ends any earlier session.
+    /// A new session: its number, title and where its events go. Ends any earlier one.
     Open {
+        id: u64,
         title: String,
         events: Sender<Event>,
     },
     /// A new frame is in the slot.
     Frame,
     /// A new title for the session's window.
-    Title(String),
+    Title(u64, String),
     /// The session ended: close its window.
-    Close,
+    Close(u64),
 }
 
 /// The sessions' side of the window thread, one per process.
@@ -50,6 +56,7 @@ const START_TIMEOUT: Duration = Duration::from_secs(5);
 
 /// One session of the window: open from [`Window::open`] until dropped.
 pub struct Window {
+    id: u64,
     viewer: &'static Viewer,
     events: Mutex<Receiver<Event>>,
 }
@@ -67,14 +74,17 @@ impl Window {
     pub fn open(title: &str) -> Result<Self, NoWindow> {
         let viewer = VIEWER.get_or_init(start).as_ref().map_err(Clone::clone)?;
         let (tx, rx) = mpsc::channel();
+        let id = NEXT_SESSION.fetch_add(1, Ordering::Relaxed);
         viewer
             .proxy
             .send_event(Msg::Open {
+                id,
                 title: title.to_string(),
                 events: tx,
             })
             .map_err(|_| NoWindow("the window thread has stopped".into()))?;
         Ok(Self {
+            id,
             viewer,
             events: Mutex::new(rx),
         })
@@ -86,14 +96,17 @@ impl Window {
             .viewer
             .slot
             .lock()
-            .unwrap_or_else(PoisonError::into_inner) = Some(frame);
+            .unwrap_or_else(PoisonError::into_inner) = Some((self.id, frame));
         // An error means the window thread stopped: the caller goes on without it.
         let _ = self.viewer.proxy.send_event(Msg::Frame);
     }
 
     /// Sets the window's title.
     pub fn set_title(&self, title: &str) {
-        let _ = self.viewer.proxy.send_event(Msg::Title(title.to_string()));
+        let _ = self
+            .viewer
+            .proxy
+            .send_event(Msg::Title(self.id, title.to_string()));
     }
 
     /// Waits for the next key press, the window's closing or its capture; `None` when
@@ -120,7 +133,7 @@ impl Window {
 
 impl Drop for Window {
     fn drop(&mut self) {
-        let _ = self.viewer.proxy.send_event(Msg::Close);
+        let _ = self.viewer.proxy.send_event(Msg::Close(self.id));
     }
 }
 
@@ -291,8 +304,9 @@ impl View {
     }
 }
 
-/// The session on show: where its events go and its title.
+/// The session on show: its number, where its events go and its title.
 struct Session {
+    id: u64,
     events: Sender<Event>,
     title: String,
     /// The user closed its window: later frames of the session are not shown.
@@ -325,7 +339,7 @@ impl App {
 
     /// Shows the newest frame, opening the window for the first one.
     fn new_frame(&mut self, event_loop: &ActiveEventLoop) {
-        let Some(frame) = self
+        let Some((id, frame)) = self
             .slot
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
@@ -336,7 +350,7 @@ impl App {
         let Some(session) = &self.session else {
             return;
         };
-        if session.closed {
+        if session.closed || session.id != id {
             return;
         }
         if self.view.is_none() {
@@ -390,26 +404,29 @@ impl ApplicationHandler<Msg> for App {
 
     fn user_event(&mut self, event_loop: &ActiveEventLoop, msg: Msg) {
         match msg {
-            Msg::Open { title, events } => {
+            Msg::Open { id, title, events } => {
                 self.close_view();
                 self.session = Some(Session {
+                    id,
                     events,
                     title,
                     closed: false,
                 });
             }
             Msg::Frame => self.new_frame(event_loop),
-            Msg::Title(title) => {
-                if let Some(view) = &self.view {
-                    view.window.set_title(&title);
-                }
-                if let Some(s) = &mut self.session {
+            Msg::Title(id, title) => {
+                if let Some(s) = self.session.as_mut().filter(|s| s.id == id) {
+                    if let Some(view) = &self.view {
+                        view.window.set_title(&title);
+                    }
                     s.title = title;
                 }
             }
-            Msg::Close => {
-                self.close_view();
-                self.session = None;
+            Msg::Close(id) => {
+                if self.session.as_ref().is_some_and(|s| s.id == id) {
+                    self.close_view();
+                    self.session = None;
+                }
             }
         }
     }
