@@ -379,7 +379,12 @@ impl App {
         match view.draw(frame, self.capture.is_some()) {
             Ok(Some(shown)) => {
                 if let Some(path) = self.capture.take() {
-                    let written = std::fs::write(&path, shown.to_ppm())
+                    // Written whole under another name, then renamed: a program
+                    // waiting for the file never sees half of it.
+                    let mut part = path.clone().into_os_string();
+                    part.push(".part");
+                    let written = std::fs::write(&part, shown.to_ppm())
+                        .and_then(|()| std::fs::rename(&part, &path))
                         .map_err(|e| format!("{}: {e}", path.display()));
                     self.send(Event::Captured(written));
                 }
