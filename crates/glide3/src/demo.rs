@@ -16,6 +16,14 @@
 //! * A sky gradient behind, unfogged, with stars (`grDrawPoint`); the whole frame
 //!   16-bit with 4x4 dithering.
 //!
+//! Where the Glide facts come from (Glide 3.0 Programming Guide, shared/seeds/001):
+//! texture coordinates are s/w and t/w with 0..256 one repeat of the texture across
+//! its longer side (the vertex-parameter table, GR_PARAM_STn; chapter 9), and the
+//! hardware takes -2^16..2^16-1 (glossary, "texture coordinates"): the floor's reach
+//! at most 5760. The upstream TMU1's texel is TMU0's `other`, and `SCALE_OTHER` by
+//! `LOCAL` multiplies the two (chapter 9, Example 9.2, a spotlight map times a source
+//! texture; here the light map is upstream).
+//!
 //! [`draw`] draws it on an open 640x480 context; the caller swaps. Everything is
 //! computed from fixed numbers with plain arithmetic (no libm calls), so the frame is
 //! the same on every run and host.

@@ -147,6 +147,8 @@ pub fn display_from_env(
     }
 }
 
+pub mod text;
+
 #[cfg(feature = "window")]
 mod live;
 #[cfg(feature = "window")]

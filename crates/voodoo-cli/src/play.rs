@@ -98,6 +98,8 @@ pub enum Action {
     Show(Shown),
     NextModel,
     ToggleDiff,
+    /// Show or hide the keys and the status drawn over the picture.
+    ToggleHelp,
     Quit,
 }
 
@@ -116,6 +118,7 @@ impl Action {
             Key::Char('d') => Action::Show(Shown::Depth),
             Key::Char('m') | Key::Tab => Action::NextModel,
             Key::Char('g') => Action::ToggleDiff,
+            Key::Char('h') | Key::Char('?') => Action::ToggleHelp,
             Key::Escape | Key::Char('q') => Action::Quit,
             _ => return None,
         })
@@ -123,7 +126,8 @@ impl Action {
 }
 
 /// The keys, as the title bar lists them.
-pub const KEYS: &str = "Right/Space: next frame, Down/N: next command, Left: previous frame, \
+pub const KEYS: &str =
+    "H: keys on screen, Right/Space: next frame, Down/N: next command, Left: previous frame, \
                         Up/P: previous command, Home: start, F/B/D: front/back/depth, \
                         M: model, G: golden diff, Q: quit";
 
@@ -144,6 +148,8 @@ pub struct Player {
     view: View,
     shown: Shown,
     diff: bool,
+    /// The keys and status drawn over the picture (`H`).
+    help: bool,
     goldens: Option<PathBuf>,
     /// The goldens of the last dump passed of the colour buffers and of the aux buffer.
     golden: Vec<Golden>,
@@ -200,6 +206,7 @@ impl Player {
             view,
             shown: Shown::Front,
             diff,
+            help: false,
             goldens,
             golden: Vec::new(),
         }
@@ -251,6 +258,7 @@ impl Player {
                 self.view = View::ALL[(at + 1) % View::ALL.len()];
             }
             Action::ToggleDiff => self.diff = !self.diff,
+            Action::ToggleHelp => self.help = !self.help,
             Action::Quit => return false,
         }
         true
@@ -360,31 +368,41 @@ impl Player {
             }
             failing = Some(n);
         }
-        (
-            sst1_window::Frame {
-                width: w,
-                height: h,
-                pixels,
-            },
-            failing,
-        )
+        let mut frame = sst1_window::Frame {
+            width: w,
+            height: h,
+            pixels,
+        };
+        if self.help {
+            use sst1_window::text;
+            let columns = text::columns(w);
+            let mut lines = text::wrap(&self.status(failing), columns);
+            lines.extend(text::wrap(KEYS, columns));
+            text::draw_lines(&mut frame, &lines);
+        }
+        (frame, failing)
     }
 
-    /// The title bar: where the player is, what it shows, and the keys.
-    pub fn title(&self, name: &str, failing: Option<u64>) -> String {
+    /// Where the player is and what it shows, in one line.
+    fn status(&self, failing: Option<u64>) -> String {
         let diff = match (self.diff, failing, self.golden_for_shown()) {
             (false, ..) => String::new(),
             (true, Some(n), Some(g)) => format!(", {n} pixels off {}", g.file),
             (true, ..) => ", no goldens".to_string(),
         };
         format!(
-            "voodoo play {name}: frame {}, op {}/{}, {} {}{diff} | {KEYS}",
+            "frame {}, op {}/{}, {} {}{diff}",
             self.frame_number(),
             self.pos,
             self.ops.len(),
             self.view.name(),
             self.shown.name(),
         )
+    }
+
+    /// The title bar: where the player is, what it shows, and the keys.
+    pub fn title(&self, name: &str, failing: Option<u64>) -> String {
+        format!("voodoo play {name}: {} | {KEYS}", self.status(failing))
     }
 }
 
@@ -679,6 +697,29 @@ mod tests {
         );
         p.act(Action::NextFrame);
         assert_eq!(p.render().1, Some(0));
+    }
+
+    #[test]
+    fn h_draws_the_keys_over_the_bottom_of_the_picture() {
+        let (ops, config) = gouraud();
+        let mut p = Player::new(ops, config, View::Hardware, None);
+        p.act(Action::NextFrame);
+        let plain = p.render().0;
+        p.act(Action::ToggleHelp);
+        let helped = p.render().0;
+        let mut want = plain.clone();
+        let columns = sst1_window::text::columns(640);
+        let mut lines = sst1_window::text::wrap("frame 1, op 611/611, hardware front", columns);
+        lines.extend(sst1_window::text::wrap(KEYS, columns));
+        sst1_window::text::draw_lines(&mut want, &lines);
+        assert_eq!(helped, want);
+        // Three lines of keys and the status: the picture above them is untouched.
+        assert_eq!(lines.len(), 4);
+        let strip = 640 * (480 - (4 * 14 + 8));
+        assert_eq!(helped.pixels[..strip], plain.pixels[..strip]);
+        assert_ne!(helped.pixels[strip..], plain.pixels[strip..]);
+        p.act(Action::ToggleHelp);
+        assert_eq!(p.render().0, plain);
     }
 
     #[test]
