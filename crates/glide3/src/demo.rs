@@ -554,39 +554,93 @@ pub fn draw(g: &mut Glide) {
     g.alpha_blend_function(GR_BLEND_ONE, GR_BLEND_ZERO, GR_BLEND_ONE, GR_BLEND_ZERO);
 }
 
-/// One pillar at floor point (`x`, `z`): its front face and the face towards the
-/// middle of the hall (`side` is -1 on the left, +1 on the right), marble-textured,
-/// brighter at the foot where the pool of light is and darker towards the top.
+/// One pillar at floor point (`x`, `z`) (`side` is -1 on the left, +1 on the right): a
+/// fluted shaft on a wider plinth under a wider capital, marble-textured, brighter at
+/// the foot where the pool of light is and darker towards the top.
 fn pillar(g: &mut Glide, x: f32, z: f32, side: f32) {
-    let (x0, x1) = (x - PILLAR_HALF, x + PILLAR_HALF);
-    let (z0, z1) = (z - PILLAR_HALF, z + PILLAR_HALF);
-    let h = PILLAR_HEIGHT;
-    let t_top = 256.0 * 2.0;
     let warm = |k: f32| [255.0 * k, 214.0 * k, 170.0 * k];
-    let (foot, head) = (warm(1.0), warm(0.45));
-    let no_light = [0.0, 0.0];
-    // Front face (towards the eye): the texture once across it.
-    quad(
-        g,
-        &[
-            vertex([x0, h, z0], head, 255.0, [0.0, 0.0], no_light),
-            vertex([x1, h, z0], head, 255.0, [256.0, 0.0], no_light),
-            vertex([x1, 0.0, z0], foot, 255.0, [256.0, t_top], no_light),
-            vertex([x0, 0.0, z0], foot, 255.0, [0.0, t_top], no_light),
-        ],
-    );
-    // Inner face, turned away from the light: darker.
-    let xi = if side < 0.0 { x1 } else { x0 };
-    let dim = |c: [f32; 3]| c.map(|v| v * 0.6);
-    quad(
-        g,
-        &[
-            vertex([xi, h, z0], dim(head), 255.0, [0.0, 0.0], no_light),
-            vertex([xi, h, z1], dim(head), 255.0, [256.0, 0.0], no_light),
-            vertex([xi, 0.0, z1], dim(foot), 255.0, [256.0, t_top], no_light),
-            vertex([xi, 0.0, z0], dim(foot), 255.0, [0.0, t_top], no_light),
-        ],
-    );
+    let h = PILLAR_HEIGHT;
+    let (plinth, capital) = (0.35, 0.3);
+    let wide = PILLAR_HALF + 0.12;
+    let block = |g: &mut Glide, half: f32, y0: f32, y1: f32, foot: f32, head: f32| {
+        let b = Block {
+            x: [x - half, x + half],
+            y: [y0, y1],
+            z: [z - half, z + half],
+            // The texture once across a face, twice up the shaft's height.
+            t: 512.0 * (y1 - y0) / h,
+        };
+        b.draw(g, side, warm(foot), warm(head));
+    };
+    block(g, PILLAR_HALF, plinth, h - capital, 0.95, 0.45);
+    block(g, wide, 0.0, plinth, 1.0, 0.95);
+    block(g, wide, h - capital, h, 0.5, 0.45);
+}
+
+/// An upright box of the hall, textured on the faces the eye sees.
+struct Block {
+    x: [f32; 2],
+    y: [f32; 2],
+    z: [f32; 2],
+    /// Texture t across its height.
+    t: f32,
+}
+
+impl Block {
+    /// Draws the front face (towards the eye), the face towards the middle of the hall
+    /// (darker, turned from the light), the top where it is below the eye (lit) and the
+    /// underside where it is above (in shadow), coloured `foot` at the bottom and `head`
+    /// at the top.
+    fn draw(&self, g: &mut Glide, side: f32, foot: [f32; 3], head: [f32; 3]) {
+        let ([x0, x1], [y0, y1], [z0, z1]) = (self.x, self.y, self.z);
+        let none = [0.0, 0.0];
+        let v = |p: [f32; 3], c: [f32; 3], st: [f32; 2]| vertex(p, c, 255.0, st, none);
+        let t = self.t;
+        quad(
+            g,
+            &[
+                v([x0, y1, z0], head, [0.0, 0.0]),
+                v([x1, y1, z0], head, [256.0, 0.0]),
+                v([x1, y0, z0], foot, [256.0, t]),
+                v([x0, y0, z0], foot, [0.0, t]),
+            ],
+        );
+        let xi = if side < 0.0 { x1 } else { x0 };
+        let dim = |c: [f32; 3]| c.map(|v| v * 0.6);
+        quad(
+            g,
+            &[
+                v([xi, y1, z0], dim(head), [0.0, 0.0]),
+                v([xi, y1, z1], dim(head), [256.0, 0.0]),
+                v([xi, y0, z1], dim(foot), [256.0, t]),
+                v([xi, y0, z0], dim(foot), [0.0, t]),
+            ],
+        );
+        if y1 < EYE_Y {
+            let lit = head.map(|c| (c * 1.15).min(255.0));
+            quad(
+                g,
+                &[
+                    v([x0, y1, z1], lit, [0.0, 0.0]),
+                    v([x1, y1, z1], lit, [256.0, 0.0]),
+                    v([x1, y1, z0], lit, [256.0, 64.0]),
+                    v([x0, y1, z0], lit, [0.0, 64.0]),
+                ],
+            );
+        }
+        if y0 > EYE_Y {
+            let shade = dim(dim(foot));
+            quad(
+                g,
+                &[
+                    v([x0, y0, z0], shade, [0.0, 0.0]),
+                    v([x1, y0, z0], shade, [256.0, 0.0]),
+                    v([x1, y0, z1], shade, [256.0, 64.0]),
+                    v([x0, y0, z1], shade, [0.0, 64.0]),
+                ],
+            );
+        }
+    }
 }
 
 /// Two panes of tinted glass between the second and third pillar of each row (behind
