@@ -14,7 +14,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 target=${CARGO_TARGET_DIR:-$root/target}
 
-# GLIDE3_FEATURES=window builds the optional live window (VOODOO_WINDOW=1).
+# GLIDE3_FEATURES passes extra cargo features (the live window of VOODOO_WINDOW=1,
+# feature `window`, is built by default).
 (cd "$root" && cargo build --release -p glide3-c ${GLIDE3_FEATURES:+--features "$GLIDE3_FEATURES"})
 
 mkdir -p "$prefix/lib/pkgconfig" "$prefix/include/glide3"

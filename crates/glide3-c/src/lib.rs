@@ -20,7 +20,7 @@
 //!   between bus accesses, from the host's clock (`wait` lines of at least 1 us;
 //!   `sst1_trace::Recorder::record_host_time`), so its polling replays as it ran.
 //! * `VOODOO_WINDOW=1`: show the front buffer in a live window, updated at every buffer
-//!   swap (`window` module; needs the cargo feature `window` and a display, else one
+//!   swap (`window` module; needs a display and the default cargo feature `window`, else one
 //!   line on stderr and the run stays headless).
 //! * `VOODOO_FBI_MB`, `VOODOO_TMUS`, `VOODOO_TMU_MB`: the board (default 4, 1, 4).
 //! * `VOODOO_MODEL`: the model of the board, `hardware` (the default) or a reference

@@ -22,6 +22,7 @@
 
 mod aa;
 pub mod consts;
+pub mod demo;
 pub mod draw;
 pub mod g3df;
 pub mod get;

@@ -10,6 +10,8 @@
 
 mod bench;
 mod chart;
+mod demo;
+mod play;
 mod plot;
 
 use std::io::IsTerminal;
@@ -24,13 +26,9 @@ use sst1_trace::judge;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
     encode_binary, execute_references_stream, execute_stream, load_trace, open_trace, quote,
-    read_file_bounded, rgb565_to_rgb8, stream_trace, vote_buffer, write_file_replacing, write_text,
-    Dump, DumpDir, OpCounts, ReplayError, TraceOp, TraceStream,
+    read_file_bounded, rgb565_to_rgb8, vote_buffer, write_file_replacing, write_text, Dump,
+    DumpDir, OpCounts, ReplayError, TraceOp, TraceStream,
 };
-
-/// The trace `voodoo demo` replays: Gouraud-shaded triangles with 4×4 dithering.
-const DEMO_TRACE: &[u8] =
-    include_bytes!("../../../traces/conformance/traces/gouraud_dither4.trace.gz");
 
 #[derive(Parser)]
 #[command(
@@ -125,11 +123,29 @@ enum Command {
         #[arg(long, value_name = "FILE")]
         profile: Option<PathBuf>,
     },
-    /// Replay the bundled demo trace and write the picture as a PNG.
+    /// Draw the demo scene through the Glide 3 front-end (mipmapped textures, a light
+    /// map, fog, transparency) and write the picture as a PNG.
     Demo {
         /// Where to write the picture.
         #[arg(long, default_value = "voodoo-demo.png")]
         png: PathBuf,
+        /// Only write the PNG: no window, even where a display exists.
+        #[arg(long)]
+        no_window: bool,
+    },
+    /// Play a trace in a window: step by frame or by drawing command, show the front,
+    /// back or depth buffer of each model, mark where it breaks golden dumps (keys in the
+    /// title bar).
+    Play {
+        /// Trace file: text or binary, optionally gzip-compressed.
+        trace: PathBuf,
+        /// Golden dumps to mark differences to: `check`'s folder (one folder per
+        /// reference), or a folder of the dumps themselves.
+        #[arg(long, value_name = "DIR")]
+        goldens: Option<PathBuf>,
+        /// The model shown first (M cycles through them).
+        #[arg(long, value_enum, default_value = "hardware")]
+        model: Model,
     },
     /// Summarise a trace: board, writes, triangles, fills, swaps, registers touched.
     Info {
@@ -292,6 +308,17 @@ enum Model {
 }
 
 impl Model {
+    /// What `voodoo play` shows of the model.
+    fn view(self) -> play::View {
+        match self {
+            Model::Hardware | Model::Single => play::View::Hardware,
+            Model::Vote => play::View::Vote,
+            Model::Mame => play::View::Reference(Reference::Mame),
+            Model::DosboxStaging => play::View::Reference(Reference::DosboxStaging),
+            Model::Box86 => play::View::Reference(Reference::Box86),
+        }
+    }
+
     /// The accuracy profile of a one-board model; `None` for the vote.
     fn profile(self) -> Option<AccuracyProfile> {
         match self {
@@ -382,7 +409,12 @@ fn main() -> ExitCode {
             profile,
         } => resolve_model(model, profile.as_deref())
             .and_then(|profile| check(&trace, &goldens, profile)),
-        Command::Demo { png } => demo(&png),
+        Command::Demo { png, no_window } => demo(&png, !no_window),
+        Command::Play {
+            trace,
+            goldens,
+            model,
+        } => play::run(&trace, model.view(), goldens),
         Command::Info { trace } => info(&trace),
         Command::Reg { register, value } => reg(&register, &value),
         Command::Convert { input, output } => convert(&input, &output),
@@ -667,7 +699,12 @@ fn describe_config(c: sst1_board::BoardConfig) -> String {
 /// temporary file renamed over `path`.
 fn write_front_png(replayed: &Replayed, path: &Path) -> Result<(u32, u32), String> {
     let (width, height) = replayed.board.display_size();
-    let pixels = &replayed.front;
+    write_png(width, height, &replayed.front, path)
+}
+
+/// Writes `width * height` RGB565 pixels as an RGB PNG (expanded by bit replication),
+/// through a temporary file renamed over `path`.
+fn write_png(width: u32, height: u32, pixels: &[u16], path: &Path) -> Result<(u32, u32), String> {
     let rgb: Vec<u8> = pixels.iter().flat_map(|&p| rgb565_to_rgb8(p)).collect();
     let image = image::RgbImage::from_raw(width, height, rgb)
         .ok_or_else(|| format!("front buffer is not {width}x{height}"))?;
@@ -945,20 +982,16 @@ fn check(path: &Path, goldens: &Path, profile: Option<AccuracyProfile>) -> Resul
     Ok(())
 }
 
-fn demo(png: &Path) -> Result<(), String> {
-    let stream = stream_trace("gouraud_dither4.trace.gz", DEMO_TRACE).map_err(|e| e.to_string())?;
-    let replayed = run(
-        stream,
-        Some(OneBoard::exact(AccuracyProfile::default())),
-        default_threads(),
-        Session::default(),
-        |_| Ok(()),
-    )?;
-    let (w, h) = write_front_png(&replayed, png)?;
-    println!(
-        "wrote {} ({w}x{h}): Gouraud-shaded triangles, 4x4 dither",
-        png.display()
-    );
+fn demo(png: &Path, window: bool) -> Result<(), String> {
+    let picture = demo::render_on(Board::new(demo::config()))?;
+    let (w, h) = write_png(picture.width, picture.height, &picture.pixels, png)?;
+    println!("wrote {} ({w}x{h}), drawn through Glide 3:", png.display());
+    for line in glide::demo::DESCRIPTION {
+        println!("  {line}");
+    }
+    if window {
+        demo::show(&picture, png)?;
+    }
     Ok(())
 }
 

@@ -39,16 +39,122 @@ const SMALL: &str = "# a comment\n\
                      w 0x400000 0x12345678\n\
                      dump front small_front.raw\n";
 
+/// The demo's blessed front buffer (traces/demo/demo_front.raw.gz).
+fn demo_golden() -> Vec<u16> {
+    use std::io::Read;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces/demo/demo_front.raw.gz");
+    let mut bytes = Vec::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(path).unwrap())
+        .read_to_end(&mut bytes)
+        .unwrap();
+    bytes
+        .chunks_exact(2)
+        .map(|b| u16::from_le_bytes([b[0], b[1]]))
+        .collect()
+}
+
 #[test]
 fn demo_writes_a_png() {
     let dir = scratch("demo");
-    let out = stdout(&voodoo(&dir, &["demo"]));
-    assert_eq!(
-        out,
-        "wrote voodoo-demo.png (640x480): Gouraud-shaded triangles, 4x4 dither\n"
-    );
-    let image = image::open(dir.join("voodoo-demo.png")).unwrap();
+    let out = stdout(&voodoo(&dir, &["demo", "--no-window"]));
+    let mut want = "wrote voodoo-demo.png (640x480), drawn through Glide 3:\n".to_string();
+    for line in glide::demo::DESCRIPTION {
+        want += &format!("  {line}\n");
+    }
+    assert_eq!(out, want);
+    // The PNG is the demo's front buffer, blessed in traces/demo (glide3's demo_scene
+    // test), each RGB565 pixel widened by bit replication.
+    let image = image::open(dir.join("voodoo-demo.png")).unwrap().to_rgb8();
     assert_eq!((image.width(), image.height()), (640, 480));
+    let golden = demo_golden();
+    let want: Vec<u8> = golden
+        .iter()
+        .flat_map(|&p| sst1_trace::rgb565_to_rgb8(p))
+        .collect();
+    assert!(
+        image.as_raw() == &want,
+        "the PNG is not the blessed demo frame"
+    );
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn demo_without_a_display_says_so_and_writes_the_png() {
+    let dir = scratch("demo-headless");
+    let output = Command::new(env!("CARGO_BIN_EXE_voodoo"))
+        .args(["demo", "--png", "d.png"])
+        .current_dir(&dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    assert!(output.status.success());
+    let why = if cfg!(feature = "window") {
+        "no display is available (DISPLAY and WAYLAND_DISPLAY are unset)"
+    } else {
+        "this build has no window (it was built without the `window` feature)"
+    };
+    assert_eq!(
+        String::from_utf8_lossy(&output.stderr),
+        format!("voodoo: no window: {why}; the picture is in d.png\n")
+    );
+    let image = image::open(dir.join("d.png")).unwrap();
+    assert_eq!((image.width(), image.height()), (640, 480));
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// `voodoo ARGS` in `dir` with no display; its exit status and stderr.
+fn headless(dir: &Path, args: &[&str]) -> (bool, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_voodoo"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    (
+        output.status.success(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn play_checks_its_inputs_then_needs_a_window() {
+    let dir = scratch("play");
+    std::fs::write(dir.join("bad.trace"), "w 0x000124 0\nbogus line\n").unwrap();
+    std::fs::write(dir.join("ok.trace"), "w 0x000124 0\n").unwrap();
+    assert_eq!(
+        headless(&dir, &["play", "bad.trace"]),
+        (
+            false,
+            "voodoo: bad.trace:2: unknown command `bogus`; expected config, pci, w, r, wait or dump\n"
+                .into()
+        )
+    );
+    let (ok, err) = headless(&dir, &["play", "missing.trace"]);
+    assert!(!ok);
+    assert!(err.starts_with("voodoo: missing.trace: "), "{err}");
+    let (ok, err) = headless(&dir, &["play", "ok.trace", "--goldens", "nowhere"]);
+    assert!(!ok);
+    assert!(err.starts_with("voodoo: goldens folder nowhere: "), "{err}");
+    assert_eq!(
+        headless(&dir, &["play", "ok.trace", "--goldens", "ok.trace"]),
+        (
+            false,
+            "voodoo: goldens folder ok.trace: not a folder\n".into()
+        )
+    );
+    let why = if cfg!(feature = "window") {
+        "no display is available (DISPLAY and WAYLAND_DISPLAY are unset)"
+    } else {
+        "this build has no window (it was built without the `window` feature)"
+    };
+    assert_eq!(
+        headless(&dir, &["play", "ok.trace"]),
+        (false, format!("voodoo: play needs a window: {why}\n"))
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 
