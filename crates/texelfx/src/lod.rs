@@ -268,11 +268,21 @@ pub(crate) fn pixel_lod(
         // Source: MAME `fetch_texel` and DOSBox `TEXTURE_PIPELINE`: matrix value << 4 (0..15/16).
         lod += i32::from(DITHER_4X4[(p.y & 3) as usize][(p.x & 3) as usize]) << 4;
     }
-    let min = (tl.lodmin() << 6) as i32;
-    // UNVERIFIED: MAME does not cap lodmax at 8.0; the spec and 86Box do.
+    // UNVERIFIED: the range is capped at LOD 8.0, the smallest level (spec 5.51: LODs 0
+    // to 8), lodmin too: a `lodmin` field above 8.0 (4.2 fixed point, up to 15.75) gives
+    // LOD 8.0, whose level, parity (trilinear) and zero fraction are those of the level
+    // read. MAME does not cap lodmax at 8.0; 86Box caps lodmax only; for a lodmin above
+    // 8.0 both index past their nine levels, which no chip does.
+    let min = lod_min(tl);
     let max = ((tl.lodmax() << 6) as i32).min(0x800);
     // A lodmin above lodmax: MAME's std::clamp is then undefined; take lodmin like 86Box.
     lod.min(max).max(min)
+}
+
+/// `tLOD`'s `lodmin` as 8.8, capped at LOD 8.0 as [`pixel_lod`]'s clamp is.
+#[inline]
+pub(crate) fn lod_min(tl: TLod) -> i32 {
+    ((tl.lodmin() << 6) as i32).min(0x800)
 }
 
 #[cfg(test)]

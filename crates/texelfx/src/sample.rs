@@ -91,7 +91,7 @@ impl Tmu {
         };
         let dither = mode.tloddither();
         let lod = pixel_lod(profile.lod, profile.lod_dither, &p, self.t_lod, dither);
-        let lodmin = (TLod(self.t_lod).lodmin() << 6) as i32;
+        let lodmin = lod::lod_min(TLod(self.t_lod));
         // lod >= 0 after the clamp, so the integer part is 0..=8.
         let ilod_raw = (lod >> 8) as usize;
         let mut ilod = ilod_raw;

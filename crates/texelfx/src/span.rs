@@ -358,7 +358,7 @@ impl Tmu {
         // (lodmin where lodmin >= lodmax). A level outside (none should be) is decoded by
         // the sampling thread itself (`LaneScratch::levels`), with the same texels.
         let tl = TLod(self.t_lod);
-        let lo = (tl.lodmin() << 6) as i32;
+        let lo = lod::lod_min(tl);
         let hi = ((tl.lodmax() << 6) as i32).min(0x800).max(lo);
         let lodmask = self.layout.lodmask as i32;
         for raw in (lo >> 8)..=(hi >> 8) {
@@ -533,7 +533,7 @@ impl Tmu {
         if profile.lod != LodCalc::Box86 {
             base = base.wrapping_add(tl.lodbias() << 6);
         }
-        let lo = (tl.lodmin() << 6) as i32;
+        let lo = lod::lod_min(tl);
         // UNVERIFIED (as `lod::pixel_lod`): lodmax capped at 8.0.
         let hi = ((tl.lodmax() << 6) as i32).min(0x800);
         let lod = &mut c.lod;

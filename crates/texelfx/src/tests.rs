@@ -367,6 +367,23 @@ fn trilinear_reverses_blend_on_odd_lods() {
     assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 127);
 }
 
+/// A `lodmin` field above 8.0 (here 13.5, field 54, with `lodmax` 7.25) gives LOD 8.0:
+/// level 8, an even LOD for trilinear and a zero fraction, whatever the gradients.
+#[test]
+fn lodmin_above_eight_is_lod_eight() {
+    // combine: c_other * (~lodfrac + 1) >> 8, reversed on odd LODs; the local texel unused
+    let mode = fmt(13) | (5 << 14) | (5 << 23) | (1 << 30);
+    let mut tmu = mip_chain(54 | (29 << 6));
+    tmu.write_reg(addr::TEXTURE_MODE, fmt(13) | DECAL);
+    assert_eq!(at_gradient(&mut tmu, 0), 160, "level 8");
+    tmu.write_reg(addr::TEXTURE_MODE, mode);
+    set_iter(&mut tmu, 0, 0, tex(1), tex(1), ONE_W);
+    tmu.begin_triangle::<R>();
+    // LOD 8.0, fraction 0, even: 255 * (0 ^ 0xff) + 1 >> 8 = 255. Taken as 13.5 it would
+    // be odd with fraction 0x80: 255 * (0x80 + 1) >> 8 = 128.
+    assert_eq!(tmu.texel::<R>(0, 0, 0, 0, WHITE).r, 255);
+}
+
 #[test]
 fn lod_zerofrac_profile() {
     let mode = fmt(13) | (5 << 14) | (5 << 23) | (1 << 17) | (1 << 26);
