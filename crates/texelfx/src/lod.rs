@@ -271,8 +271,9 @@ pub(crate) fn pixel_lod(
     // UNVERIFIED: the range is capped at LOD 8.0, the smallest level (spec 5.51: LODs 0
     // to 8), lodmin too: a `lodmin` field above 8.0 (4.2 fixed point, up to 15.75) gives
     // LOD 8.0, whose level, parity (trilinear) and zero fraction are those of the level
-    // read. MAME does not cap lodmax at 8.0; 86Box caps lodmax only; for a lodmin above
-    // 8.0 both index past their nine levels, which no chip does.
+    // read. MAME does not cap lodmax at 8.0. For a lodmin above 8.0, 86Box's
+    // `voodoo_tmu_fetch` indexes its nine-level table with the clamped LOD as it is
+    // (as far as we read): not a behaviour a chip has.
     let min = lod_min(tl);
     let max = ((tl.lodmax() << 6) as i32).min(0x800);
     // A lodmin above lodmax: MAME's std::clamp is then undefined; take lodmin like 86Box.
