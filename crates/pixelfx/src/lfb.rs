@@ -16,6 +16,7 @@ use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::{LfbOrdering, LfbWordSwap};
 use crate::stats::Kill;
+use crate::watch::{NoStages, PixelEvent, SourceKind};
 
 /// One pixel decoded from an LFB write.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -230,8 +231,14 @@ impl Fbi {
                 let x = x0 + i as i32;
                 self.stats.pixels_in += 1;
                 let (left, right, low, high) = st.clip;
+                let watched = self.watch.as_ref().is_some_and(|w| w.is(x, scry));
                 if fbz.enable_clipping() && (x < left || x >= right || scry < low || scry >= high) {
                     self.count(Err(Kill::Clip));
+                    if watched {
+                        self.record(PixelEvent::Clipped {
+                            source: SourceKind::Lfb,
+                        });
+                    }
                     continue;
                 }
                 let depth = p.depth.unwrap_or(za as u16);
@@ -250,7 +257,11 @@ impl Fbi {
                 };
                 let mut stipple = st.stipple;
                 let prow = profile.pattern_row.row(y, scry);
-                let r = self.shade_pixel::<M>(
+                if watched {
+                    self.shade_watched_lfb::<M>(&st, x, prow, scry, &it, colour, &mut stipple);
+                    continue;
+                }
+                let r = self.shade_pixel::<M, NoStages>(
                     &st,
                     x,
                     prow,
@@ -259,6 +270,7 @@ impl Fbi {
                     Source::Lfb(colour),
                     &mut stipple,
                     Rgba::default,
+                    &mut NoStages,
                 );
                 self.count(r);
             }
@@ -288,6 +300,9 @@ impl Fbi {
                     }
                 }
                 self.stats.pixels_out += 1;
+                if self.watch.as_ref().is_some_and(|w| w.is(x, scry)) {
+                    self.watch_lfb_direct(dest, x, scry, p, fbz.enable_alpha_planes());
+                }
             }
         }
     }

@@ -21,6 +21,9 @@ use crate::iter::{wfloat, Iterated};
 use crate::model::PixelModel;
 use crate::profile::{ClipRightEdge, OverrideTexel, ZAlphaByte};
 use crate::stats::Kill;
+use crate::watch::{
+    BlendStage, ColourStage, DepthStage, FogStage, IteratedStage, StageSink, WordWrite, WriteStage,
+};
 use crate::{alpha_test, blend, depth, fog, stipple};
 
 /// The mode registers and constants of one drawing operation, decoded once.
@@ -119,8 +122,13 @@ impl Fbi {
     /// `M` is the model of the chip ([`crate::model`]). This is the reference path: every
     /// mode bit is tested for every pixel. The span kernels ([`crate::span`]) run the same
     /// stages a chunk of pixels at a time.
+    ///
+    /// `stages` receives the value of every stage ([`crate::watch`]): [`NoStages`]
+    /// (nothing, at no cost) for every pixel but a watched one.
+    ///
+    /// [`NoStages`]: crate::watch::NoStages
     #[inline]
-    pub(crate) fn shade_pixel<M: PixelModel>(
+    pub(crate) fn shade_pixel<M: PixelModel, S: StageSink>(
         &mut self,
         st: &DrawState,
         x: i32,
@@ -130,6 +138,7 @@ impl Fbi {
         source: Source,
         stipple_state: &mut u32,
         texel: impl FnOnce() -> Rgba,
+        stages: &mut S,
     ) -> Result<(), Kill> {
         let mode = st.mode;
         let color_path = st.color_path;
@@ -157,6 +166,26 @@ impl Fbi {
         let bias = mode.enable_depth_bias().then_some(st.za_color as u16);
         let depth_value = depth::value(mode.wbuffer_select(), z16, wf, bias);
         let aux_index = st.aux.and_then(|a| self.fb.index(a, x, scry));
+        stages.note(|s| {
+            let iterated = match source {
+                Source::Triangle => Rgba {
+                    r: clamp.colour(it.argb[0]),
+                    g: clamp.colour(it.argb[1]),
+                    b: clamp.colour(it.argb[2]),
+                    a: clamp.colour(it.argb[3]),
+                },
+                Source::Lfb(c) => c,
+            };
+            s.iterated = Some(IteratedStage {
+                rgba_12_12: it.argb,
+                z_20_12: it.z,
+                w_32_32: it.w,
+                colour: iterated.into(),
+                z16,
+                wfloat: wf,
+                depth_value,
+            });
+        });
         if mode.enable_depthbuffer() {
             let source_depth = if mode.depth_source_compare() {
                 (st.za_color & 0xffff) as i32
@@ -169,6 +198,14 @@ impl Fbi {
                 Some(d) => depth::test(mode.depth_function(), source_depth, d),
                 None => mode.depth_function() != sst1_regs::DepthFunction::Never,
             };
+            stages.note(|s| {
+                s.depth = Some(DepthStage {
+                    function: format!("{:?}", mode.depth_function()),
+                    source: source_depth,
+                    dest,
+                    pass,
+                })
+            });
             if !pass {
                 return Err(Kill::DepthFunc);
             }
@@ -176,7 +213,9 @@ impl Fbi {
 
         // --- colour selection ---
         let texel = if color_path.texture_enable() && st.fetch_texel {
-            texel()
+            let t = texel();
+            stages.note(|s| s.texel = Some(t.into()));
+            t
         } else {
             Rgba::default()
         };
@@ -206,6 +245,19 @@ impl Fbi {
             Source::Triangle => color_path::select_other(color_path, &inputs),
             Source::Lfb(c) => c,
         };
+        stages.note(|s| {
+            s.colour = Some(ColourStage {
+                other: other.into(),
+                local: color_path::select_local(color_path, &inputs).into(),
+                combined: color_path::combine(
+                    color_path,
+                    other,
+                    color_path::select_local(color_path, &inputs),
+                    texel.a,
+                )
+                .into(),
+            })
+        });
 
         // --- chroma key, alpha mask ---
         if mode.enable_chromakey() && color_path::chroma_killed(other, st.chroma_key) {
@@ -246,6 +298,12 @@ impl Fbi {
             &fog_input,
             profile.fog,
         );
+        stages.note(|s| {
+            s.fog = Some(FogStage {
+                enabled: fog_mode.enable_fog(),
+                output: fogged.into(),
+            })
+        });
 
         // --- alpha blend ---
         let dest_index = self.fb.index(st.dest, x, scry);
@@ -259,7 +317,18 @@ impl Fbi {
                     .dither
                     .matrix_value(st.dither_matrix, x as u32, prow as u32),
             };
-            blend::alpha_blend(am, mode, &input, profile.blend)
+            let out = blend::alpha_blend(am, mode, &input, profile.blend);
+            stages.note(|s| {
+                s.blend = Some(BlendStage {
+                    src: input.src.into(),
+                    prefog: input.prefog.into(),
+                    dst_rgb565: input.dst_rgb565,
+                    dst_aux: input.dst_aux,
+                    dither_value: input.dither_value,
+                    output: out.into(),
+                })
+            });
+            out
         } else {
             fogged
         };
@@ -281,6 +350,18 @@ impl Fbi {
                 };
             }
         }
+        stages.note(|s| {
+            let word = |i: Option<usize>| i.map(|index| WordWrite { index, value: self.fb.ram[index] });
+            s.write = Some(WriteStage {
+                colour: out.into(),
+                dither: st.dither.into(),
+                dither_value: self.dither.matrix_value(st.dither, x as u32, prow as u32),
+                colour_word: word(dest_index.filter(|_| mode.rgb_buffer_mask())),
+                aux_word: word(
+                    aux_index.filter(|_| crate::span::aux_enabled(mode, profile.aux_write)),
+                ),
+            })
+        });
         Ok(())
     }
 
