@@ -163,6 +163,31 @@ impl Fbi {
     /// `color1` and `zaColor`, as the formats without them do (MAME takes the bus
     /// data).
     pub fn lfb_write_lanes<M: PixelModel>(&mut self, offset: u32, data: u32, lanes: u32) {
+        // One test per write: only the instance for a watched pixel looks for it
+        // (`crate::watch`), so the other costs nothing per pixel.
+        if self.watch.is_some() {
+            self.lfb_write_watched::<M>(offset, data, lanes)
+        } else {
+            self.lfb_write_as::<M, false>(offset, data, lanes)
+        }
+    }
+
+    /// [`Fbi::lfb_write_lanes`] while a pixel is watched (apart, so that the unwatched
+    /// instance is compiled as if the watch did not exist).
+    #[cold]
+    #[inline(never)]
+    fn lfb_write_watched<M: PixelModel>(&mut self, offset: u32, data: u32, lanes: u32) {
+        self.lfb_write_as::<M, true>(offset, data, lanes)
+    }
+
+    /// [`Fbi::lfb_write_lanes`], recording the watched pixel's events if `WATCH`.
+    #[inline(always)]
+    fn lfb_write_as<M: PixelModel, const WATCH: bool>(
+        &mut self,
+        offset: u32,
+        data: u32,
+        lanes: u32,
+    ) {
         let mut lanes = lanes;
         let profile = M::pixel(&self.profile());
         let mut mode = self.lfb_mode();
@@ -231,7 +256,7 @@ impl Fbi {
                 let x = x0 + i as i32;
                 self.stats.pixels_in += 1;
                 let (left, right, low, high) = st.clip;
-                let watched = self.watch.as_ref().is_some_and(|w| w.is(x, scry));
+                let watched = WATCH && self.watch.as_ref().is_some_and(|w| w.is(x, scry));
                 if fbz.enable_clipping() && (x < left || x >= right || scry < low || scry >= high) {
                     self.count(Err(Kill::Clip));
                     if watched {
@@ -300,7 +325,7 @@ impl Fbi {
                     }
                 }
                 self.stats.pixels_out += 1;
-                if self.watch.as_ref().is_some_and(|w| w.is(x, scry)) {
+                if WATCH && self.watch.as_ref().is_some_and(|w| w.is(x, scry)) {
                     self.watch_lfb_direct(dest, x, scry, p, fbz.enable_alpha_planes());
                 }
             }

@@ -21,9 +21,7 @@ use crate::iter::{wfloat, Iterated};
 use crate::model::PixelModel;
 use crate::profile::{ClipRightEdge, OverrideTexel, ZAlphaByte};
 use crate::stats::Kill;
-use crate::watch::{
-    BlendStage, ColourStage, DepthStage, FogStage, IteratedStage, StageSink, WordWrite, WriteStage,
-};
+use crate::watch::StageSink;
 use crate::{alpha_test, blend, depth, fog, stipple};
 
 /// The mode registers and constants of one drawing operation, decoded once.
@@ -123,11 +121,11 @@ impl Fbi {
     /// mode bit is tested for every pixel. The span kernels ([`crate::span`]) run the same
     /// stages a chunk of pixels at a time.
     ///
-    /// `stages` receives the value of every stage ([`crate::watch`]): [`NoStages`]
+    /// `stages` is told the value of every stage ([`crate::watch`]): [`NoStages`]
     /// (nothing, at no cost) for every pixel but a watched one.
     ///
     /// [`NoStages`]: crate::watch::NoStages
-    #[inline]
+    #[inline(always)]
     pub(crate) fn shade_pixel<M: PixelModel, S: StageSink>(
         &mut self,
         st: &DrawState,
@@ -166,26 +164,7 @@ impl Fbi {
         let bias = mode.enable_depth_bias().then_some(st.za_color as u16);
         let depth_value = depth::value(mode.wbuffer_select(), z16, wf, bias);
         let aux_index = st.aux.and_then(|a| self.fb.index(a, x, scry));
-        stages.note(|s| {
-            let iterated = match source {
-                Source::Triangle => Rgba {
-                    r: clamp.colour(it.argb[0]),
-                    g: clamp.colour(it.argb[1]),
-                    b: clamp.colour(it.argb[2]),
-                    a: clamp.colour(it.argb[3]),
-                },
-                Source::Lfb(c) => c,
-            };
-            s.iterated = Some(IteratedStage {
-                rgba_12_12: it.argb,
-                z_20_12: it.z,
-                w_32_32: it.w,
-                colour: iterated.into(),
-                z16,
-                wfloat: wf,
-                depth_value,
-            });
-        });
+        stages.iterated(it, &source, clamp, z16, wf, depth_value);
         if mode.enable_depthbuffer() {
             let source_depth = if mode.depth_source_compare() {
                 (st.za_color & 0xffff) as i32
@@ -198,14 +177,7 @@ impl Fbi {
                 Some(d) => depth::test(mode.depth_function(), source_depth, d),
                 None => mode.depth_function() != sst1_regs::DepthFunction::Never,
             };
-            stages.note(|s| {
-                s.depth = Some(DepthStage {
-                    function: format!("{:?}", mode.depth_function()),
-                    source: source_depth,
-                    dest,
-                    pass,
-                })
-            });
+            stages.depth(mode.depth_function(), source_depth, dest, pass);
             if !pass {
                 return Err(Kill::DepthFunc);
             }
@@ -213,9 +185,7 @@ impl Fbi {
 
         // --- colour selection ---
         let texel = if color_path.texture_enable() && st.fetch_texel {
-            let t = texel();
-            stages.note(|s| s.texel = Some(t.into()));
-            t
+            stages.texel(texel())
         } else {
             Rgba::default()
         };
@@ -245,19 +215,8 @@ impl Fbi {
             Source::Triangle => color_path::select_other(color_path, &inputs),
             Source::Lfb(c) => c,
         };
-        stages.note(|s| {
-            s.colour = Some(ColourStage {
-                other: other.into(),
-                local: color_path::select_local(color_path, &inputs).into(),
-                combined: color_path::combine(
-                    color_path,
-                    other,
-                    color_path::select_local(color_path, &inputs),
-                    texel.a,
-                )
-                .into(),
-            })
-        });
+
+        stages.colour_path(color_path, &inputs, other);
 
         // --- chroma key, alpha mask ---
         if mode.enable_chromakey() && color_path::chroma_killed(other, st.chroma_key) {
@@ -298,12 +257,7 @@ impl Fbi {
             &fog_input,
             profile.fog,
         );
-        stages.note(|s| {
-            s.fog = Some(FogStage {
-                enabled: fog_mode.enable_fog(),
-                output: fogged.into(),
-            })
-        });
+        stages.fog(fog_mode.enable_fog(), fogged);
 
         // --- alpha blend ---
         let dest_index = self.fb.index(st.dest, x, scry);
@@ -317,18 +271,7 @@ impl Fbi {
                     .dither
                     .matrix_value(st.dither_matrix, x as u32, prow as u32),
             };
-            let out = blend::alpha_blend(am, mode, &input, profile.blend);
-            stages.note(|s| {
-                s.blend = Some(BlendStage {
-                    src: input.src.into(),
-                    prefog: input.prefog.into(),
-                    dst_rgb565: input.dst_rgb565,
-                    dst_aux: input.dst_aux,
-                    dither_value: input.dither_value,
-                    output: out.into(),
-                })
-            });
-            out
+            stages.blend(&input, blend::alpha_blend(am, mode, &input, profile.blend))
         } else {
             fogged
         };
@@ -350,18 +293,12 @@ impl Fbi {
                 };
             }
         }
-        stages.note(|s| {
-            let word = |i: Option<usize>| i.map(|index| WordWrite { index, value: self.fb.ram[index] });
-            s.write = Some(WriteStage {
-                colour: out.into(),
-                dither: st.dither.into(),
-                dither_value: self.dither.matrix_value(st.dither, x as u32, prow as u32),
-                colour_word: word(dest_index.filter(|_| mode.rgb_buffer_mask())),
-                aux_word: word(
-                    aux_index.filter(|_| crate::span::aux_enabled(mode, profile.aux_write)),
-                ),
-            })
-        });
+        if S::RECORDS {
+            let rgb = dest_index.filter(|_| mode.rgb_buffer_mask());
+            let aux = aux_index.filter(|_| crate::span::aux_enabled(mode, profile.aux_write));
+            let dither_value = self.dither.matrix_value(st.dither, x as u32, prow as u32);
+            stages.write(out, st.dither, dither_value, &self.fb.ram, rgb, aux);
+        }
         Ok(())
     }
 

@@ -18,8 +18,13 @@
 use serde::{Deserialize, Serialize};
 use sst1_regs::Rgba;
 
+use sst1_dither::DitherKind;
+use sst1_regs::{DepthFunction, FbzColorPath};
+
+use crate::blend::BlendInput;
+use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
-use crate::iter::Iterated;
+use crate::iter::{Iterated, IteratorClamp};
 use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::raster::TexelSource;
@@ -279,25 +284,164 @@ impl PixelStages {
     }
 }
 
-/// Where the pipeline puts the values of its stages ([`crate::pipeline`]).
+/// Where the pipeline puts the values of its stages ([`crate::pipeline`]), one method
+/// per stage, each given values the pipeline has at hand. Every method does nothing by
+/// default: [`NoStages`] keeps the defaults, so the pipeline for an unwatched pixel is
+/// compiled as if the calls were not there. (Closures that recorded, though never
+/// called, changed the LFB path's code: about 20 instructions more per LFB write under
+/// callgrind. Plain calls of empty methods do not.)
 pub(crate) trait StageSink {
-    /// Record something about the pixel being shaded. `f` runs only for a sink that
-    /// records, so the values it reads cost nothing elsewhere.
-    fn note(&mut self, f: impl FnOnce(&mut PixelStages));
+    /// Whether the sink records (the pipeline tests it before work done only to record).
+    const RECORDS: bool = false;
+
+    /// The iterators at the pixel, the 16-bit Z and W-float, and the depth value.
+    #[inline(always)]
+    fn iterated(
+        &mut self,
+        _it: &Iterated,
+        _source: &Source,
+        _clamp: IteratorClamp,
+        _z16: u16,
+        _wfloat: u16,
+        _depth_value: i32,
+    ) {
+    }
+
+    /// The depth test's operands and outcome.
+    #[inline(always)]
+    fn depth(&mut self, _function: DepthFunction, _source: i32, _dest: Option<u16>, _pass: bool) {}
+
+    /// The texel from the TMU chain; returns it.
+    #[inline(always)]
+    fn texel(&mut self, texel: Rgba) -> Rgba {
+        texel
+    }
+
+    /// The colour path's inputs and its `other` selection (the combine is computed from
+    /// them by the same functions the pipeline calls).
+    #[inline(always)]
+    fn colour_path(&mut self, _color_path: FbzColorPath, _inputs: &Inputs, _other: Rgba) {}
+
+    /// The fog unit's output.
+    #[inline(always)]
+    fn fog(&mut self, _enabled: bool, _output: Rgba) {}
+
+    /// The blend's inputs and result; returns the result.
+    #[inline(always)]
+    fn blend(&mut self, _input: &BlendInput, output: Rgba) -> Rgba {
+        output
+    }
+
+    /// The colour dithered and the words written (indices into `ram`, after the write).
+    #[inline(always)]
+    fn write(
+        &mut self,
+        _colour: Rgba,
+        _dither: DitherKind,
+        _dither_value: u8,
+        _ram: &[u16],
+        _rgb: Option<usize>,
+        _aux: Option<usize>,
+    ) {
+    }
 }
 
 /// The sink of every pixel not watched: records nothing, compiles to nothing.
 pub(crate) struct NoStages;
 
-impl StageSink for NoStages {
-    #[inline(always)]
-    fn note(&mut self, _f: impl FnOnce(&mut PixelStages)) {}
-}
+impl StageSink for NoStages {}
 
 impl StageSink for PixelStages {
-    #[inline(always)]
-    fn note(&mut self, f: impl FnOnce(&mut PixelStages)) {
-        f(self)
+    const RECORDS: bool = true;
+
+    fn iterated(
+        &mut self,
+        it: &Iterated,
+        source: &Source,
+        clamp: IteratorClamp,
+        z16: u16,
+        wfloat: u16,
+        depth_value: i32,
+    ) {
+        let colour = match *source {
+            Source::Triangle => Rgba {
+                r: clamp.colour(it.argb[0]),
+                g: clamp.colour(it.argb[1]),
+                b: clamp.colour(it.argb[2]),
+                a: clamp.colour(it.argb[3]),
+            },
+            Source::Lfb(c) => c,
+        };
+        self.iterated = Some(IteratedStage {
+            rgba_12_12: it.argb,
+            z_20_12: it.z,
+            w_32_32: it.w,
+            colour: colour.into(),
+            z16,
+            wfloat,
+            depth_value,
+        });
+    }
+
+    fn depth(&mut self, function: DepthFunction, source: i32, dest: Option<u16>, pass: bool) {
+        self.depth = Some(DepthStage {
+            function: format!("{function:?}"),
+            source,
+            dest,
+            pass,
+        });
+    }
+
+    fn texel(&mut self, texel: Rgba) -> Rgba {
+        self.texel = Some(texel.into());
+        texel
+    }
+
+    fn colour_path(&mut self, color_path: FbzColorPath, inputs: &Inputs, other: Rgba) {
+        let local = color_path::select_local(color_path, inputs);
+        self.colour = Some(ColourStage {
+            other: other.into(),
+            local: local.into(),
+            combined: color_path::combine(color_path, other, local, inputs.texel.a).into(),
+        });
+    }
+
+    fn fog(&mut self, enabled: bool, output: Rgba) {
+        self.fog = Some(FogStage {
+            enabled,
+            output: output.into(),
+        });
+    }
+
+    fn blend(&mut self, input: &BlendInput, output: Rgba) -> Rgba {
+        self.blend = Some(BlendStage {
+            src: input.src.into(),
+            prefog: input.prefog.into(),
+            dst_rgb565: input.dst_rgb565,
+            dst_aux: input.dst_aux,
+            dither_value: input.dither_value,
+            output: output.into(),
+        });
+        output
+    }
+
+    fn write(
+        &mut self,
+        colour: Rgba,
+        dither: DitherKind,
+        dither_value: u8,
+        ram: &[u16],
+        rgb: Option<usize>,
+        aux: Option<usize>,
+    ) {
+        let word = |i: Option<usize>| i.map(|index| WordWrite { index, value: ram[index] });
+        self.write = Some(WriteStage {
+            colour: colour.into(),
+            dither: dither.into(),
+            dither_value,
+            colour_word: word(rgb),
+            aux_word: word(aux),
+        });
     }
 }
 
@@ -308,9 +452,7 @@ pub enum PixelEvent {
     Shaded(Box<PixelStages>),
     /// A triangle covered the pixel, or a pipeline LFB write reached it, outside the
     /// clip rectangle (`fbzMode` bit 0): killed before the pipeline.
-    Clipped {
-        source: SourceKind,
-    },
+    Clipped { source: SourceKind },
     /// `fastfillCMD` wrote the pixel.
     Fastfill {
         colour_word: Option<WordWrite>,
@@ -564,9 +706,7 @@ impl Fbi {
         p: &crate::lfb::LfbPixel,
         alpha_planes: bool,
     ) {
-        let colour_word = p
-            .rgb
-            .and_then(|_| self.word_at(Some(dest), x, row));
+        let colour_word = p.rgb.and_then(|_| self.word_at(Some(dest), x, row));
         let aux_written = if alpha_planes {
             p.alpha.is_some()
         } else {
