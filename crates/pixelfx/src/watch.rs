@@ -434,7 +434,12 @@ impl StageSink for PixelStages {
         rgb: Option<usize>,
         aux: Option<usize>,
     ) {
-        let word = |i: Option<usize>| i.map(|index| WordWrite { index, value: ram[index] });
+        let word = |i: Option<usize>| {
+            i.map(|index| WordWrite {
+                index,
+                value: ram[index],
+            })
+        };
         self.write = Some(WriteStage {
             colour: colour.into(),
             dither: dither.into(),

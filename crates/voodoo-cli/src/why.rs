@@ -125,7 +125,11 @@ pub struct Request<'a> {
 }
 
 /// The history of the pixel on a board with `profile` (model name `model`).
-pub fn history(req: &Request<'_>, model: &str, profile: AccuracyProfile) -> Result<History, String> {
+pub fn history(
+    req: &Request<'_>,
+    model: &str,
+    profile: AccuracyProfile,
+) -> Result<History, String> {
     if !(0..=MAX_COORD).contains(&req.x) || !(0..=MAX_COORD).contains(&req.y) {
         return Err(format!(
             "pixel ({}, {}) is outside the frame buffer's addresses (0..={MAX_COORD} each)",
@@ -363,12 +367,20 @@ impl Registers {
             chips = 0xf;
         }
         let fbi = chips & 1 != 0 && desc.chips.contains(map::Chips::FBI);
-        let tmus = (0..3u8).filter(|i| chips & (2 << i) != 0 && desc.chips.contains(map::Chips::TREX));
-        let targets: Vec<u8> = fbi.then_some(0).into_iter().chain(tmus.map(|i| i + 1)).collect();
+        let tmus =
+            (0..3u8).filter(|i| chips & (2 << i) != 0 && desc.chips.contains(map::Chips::TREX));
+        let targets: Vec<u8> = fbi
+            .then_some(0)
+            .into_iter()
+            .chain(tmus.map(|i| i + 1))
+            .collect();
         let is_command = fbi
             && matches!(
                 offset,
-                addr::TRIANGLE_CMD | addr::F_TRIANGLE_CMD | addr::FASTFILL_CMD | addr::SWAPBUFFER_CMD
+                addr::TRIANGLE_CMD
+                    | addr::F_TRIANGLE_CMD
+                    | addr::FASTFILL_CMD
+                    | addr::SWAPBUFFER_CMD
             );
         if is_command {
             self.since_command.clear();
@@ -429,11 +441,16 @@ fn pixel_lines(s: &PixelStages) -> Vec<(String, String)> {
         );
     }
     if let Some(d) = &s.depth {
-        let dest = d.dest.map_or("no aux buffer".to_owned(), |v| format!("{v:#06x}"));
+        let dest = d
+            .dest
+            .map_or("no aux buffer".to_owned(), |v| format!("{v:#06x}"));
         let verdict = if d.pass { "pass" } else { "fail" };
         line(
             "depth",
-            format!("{}: source {:#06x} against {dest}: {verdict}", d.function, d.source),
+            format!(
+                "{}: source {:#06x} against {dest}: {verdict}",
+                d.function, d.source
+            ),
         );
     }
     for t in &s.tmus {

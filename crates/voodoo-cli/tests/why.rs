@@ -93,7 +93,10 @@ fn check_history(dir: &Path, trace: &str, x: u32, y: u32) -> Vec<Value> {
         .collect();
     for s in &shaded {
         assert_eq!(s["counted"], counter_of(&s["kill"]), "{trace}: {s}");
-        assert_eq!((s["x"].as_u64(), s["row"].as_u64()), (Some(x.into()), Some(y.into())));
+        assert_eq!(
+            (s["x"].as_u64(), s["row"].as_u64()),
+            (Some(x.into()), Some(y.into()))
+        );
     }
     // The final written colour the history reports is the dump's.
     let word = dump["word"].as_u64().unwrap();
@@ -124,7 +127,10 @@ fn textured_two_tmu_pixel_matches_the_replay() {
     let tmus = s["tmus"].as_array().unwrap();
     // Upstream first: TMU 1's output is what TMU 0 combines with; TMU 0's is the texel.
     assert_eq!(tmus.len(), 2);
-    assert_eq!((tmus[0]["tmu"].as_u64(), tmus[1]["tmu"].as_u64()), (Some(1), Some(0)));
+    assert_eq!(
+        (tmus[0]["tmu"].as_u64(), tmus[1]["tmu"].as_u64()),
+        (Some(1), Some(0))
+    );
     assert_eq!(tmus[1]["output"], s["texel"]);
     std::fs::remove_dir_all(dir).unwrap();
 }
@@ -199,7 +205,10 @@ fn hand_built_triangle_stages_are_the_spec_values() {
     assert_eq!(events[1]["operation"]["Triangle"]["number"], 1);
     let t = &events[1]["event"]["Shaded"];
     let rgba = |r: u8, g: u8, b: u8, a: u8| serde_json::json!({"r": r, "g": g, "b": b, "a": a});
-    assert_eq!(t["iterated"]["rgba_12_12"], serde_json::json!([0x64000, 0x32000, 0xc8000, 0xff000]));
+    assert_eq!(
+        t["iterated"]["rgba_12_12"],
+        serde_json::json!([0x64000, 0x32000, 0xc8000, 0xff000])
+    );
     assert_eq!(t["iterated"]["colour"], rgba(100, 50, 200, 255));
     // startZ 0x1234000 (20.12): the 16-bit depth is 0x1234, compared "less" (fbzMode
     // 0x631: bits 7:5 = 1) against the cleared 0xffff.
@@ -238,11 +247,26 @@ fn hand_built_triangle_stages_are_the_spec_values() {
     assert_eq!(h["dump"]["value"], 0x1234);
     assert_eq!(h["last_write"]["value"], 0x1234);
     // The text form: one block per operation.
-    let text = stdout(&voodoo(&dir, &["why", "hand.trace", "40", "40", "--dump", "1"]));
-    assert!(text.contains("op 49: triangle 2 (Triangle through the pipeline)\n"), "{text}");
-    assert!(text.contains("  depth      Less: source 0x2000 against 0x1234: fail\n"), "{text}");
-    assert!(text.contains("  fate       killed: DepthFunc (counted: ZfuncFail)\n"), "{text}");
-    assert!(text.ends_with("dump 1 holds 0x6199 at (40, 40), written by op 47 (the history agrees)\n"), "{text}");
+    let text = stdout(&voodoo(
+        &dir,
+        &["why", "hand.trace", "40", "40", "--dump", "1"],
+    ));
+    assert!(
+        text.contains("op 46: triangle 2 (Triangle through the pipeline)\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("  depth      Less: source 0x2000 against 0x1234: fail\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains("  fate       killed: DepthFunc (counted: ZfuncFail)\n"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("dump 1 holds 0x6199 at (40, 40), written by op 44 (the history agrees)\n"),
+        "{text}"
+    );
     std::fs::remove_dir_all(dir).unwrap();
 }
 
@@ -252,7 +276,10 @@ fn vote_shows_where_the_references_part() {
     let trace = conformance("tex_2tmu_modulate");
     let c = why_json(&dir, &trace, 100, 100, &["--model", "vote"]);
     let histories = c["histories"].as_array().unwrap();
-    let models: Vec<&str> = histories.iter().map(|h| h["model"].as_str().unwrap()).collect();
+    let models: Vec<&str> = histories
+        .iter()
+        .map(|h| h["model"].as_str().unwrap())
+        .collect();
     assert_eq!(models, ["mame", "dosbox-staging", "86box"]);
     // 86Box leaves the aux buffer alone when the depth buffer is off and aux writes
     // are on; MAME and DOSBox Staging write the depth (docs/accuracy.md, aux_write).
@@ -280,8 +307,14 @@ fn bad_input_is_refused_with_a_message() {
         "outside the frame buffer's addresses",
     );
     fails(&["why", "hand.trace", "700", "10"], "outside the last dump");
-    fails(&["why", "hand.trace", "1", "1", "--dump", "3"], "--dump 3: hand.trace has 2 dump(s)");
-    fails(&["why", "hand.trace", "1", "1", "--dump", "0"], "--dump counts from 1");
+    fails(
+        &["why", "hand.trace", "1", "1", "--dump", "3"],
+        "--dump 3: hand.trace has 2 dump(s)",
+    );
+    fails(
+        &["why", "hand.trace", "1", "1", "--dump", "0"],
+        "--dump counts from 1",
+    );
     fails(&["why", "broken.trace", "1", "1"], "broken.trace:2");
     fails(&["why", "missing.trace", "1", "1"], "missing.trace");
     let out = voodoo(&dir, &["why", "hand.trace", "-3", "1"]);
