@@ -736,3 +736,87 @@ pub fn references() -> Vec<(&'static str, AccuracyProfile)> {
         .map(|r| (r.golden_dir(), r.profile()))
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fill and one flat triangle over pixel (40, 40), then a dump.
+    const TRACE: &str = "pci 0x40 0x3\n\
+        w 0x000210 0x7\nw 0x000214 0x1a2\nw 0x000210 0x1\nw 0x000220 0x02c00060\n\
+        w 0x000224 0x020b0002\nw 0x000208 0x00120032\nw 0x00020c 0x01e0027f\n\
+        w 0x000218 0x1874b040\nw 0x00021c 0x77de4000\nw 0x000200 0x1\n\
+        w 0x000214 0x002000a2\nw 0x000118 0x280\nw 0x00011c 0x1e0\n\
+        w 0x000148 0x0\nw 0x000130 0xffff\nw 0x000110 0x631\nw 0x000124 0x0\n\
+        w 0x000008 0x140\nw 0x00000c 0xa0\nw 0x000010 0x640\nw 0x000014 0x140\n\
+        w 0x000018 0x280\nw 0x00001c 0x640\nw 0x000020 0x64000\nw 0x000024 0x32000\n\
+        w 0x000028 0xc8000\nw 0x00002c 0x1234000\nw 0x000030 0xff000\nw 0x000080 0x0\n\
+        dump front t_front.raw\n";
+
+    fn history_of(name: &str, trace: &str, x: i32, y: i32) -> Result<History, String> {
+        let path = std::env::temp_dir().join(format!("why-{name}-{}.trace", std::process::id()));
+        std::fs::write(&path, trace).unwrap();
+        let req = Request {
+            trace: &path,
+            x,
+            y,
+            dump: None,
+        };
+        let h = history(&req, "hardware", AccuracyProfile::HARDWARE);
+        std::fs::remove_file(&path).unwrap();
+        h
+    }
+
+    #[test]
+    fn json_round_trip_gives_the_same_history() {
+        let h = history_of("json", TRACE, 40, 40).unwrap();
+        assert_eq!(h.events.len(), 2);
+        assert_eq!(h.last_write.as_ref().map(|w| w.value), Some(0x6199));
+        let json = serde_json::to_string(&h).unwrap();
+        let back: History = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, h);
+        let c = compare(vec![h.clone(), h]);
+        assert!(c.divergences.is_empty());
+        let back: Comparison = serde_json::from_str(&serde_json::to_string(&c).unwrap()).unwrap();
+        assert_eq!(back, c);
+    }
+
+    #[test]
+    fn comparison_names_the_first_stage_that_differs() {
+        let h = history_of("cmp", TRACE, 40, 40).unwrap();
+        let mut other = h.clone();
+        other.model = "changed".into();
+        let PixelEvent::Shaded(s) = &mut other.events[1].event else {
+            panic!("event 1 is the triangle");
+        };
+        s.fog.as_mut().unwrap().output.r ^= 1;
+        s.write.as_mut().unwrap().colour.r ^= 1;
+        let c = compare(vec![h, other]);
+        assert_eq!(c.divergences.len(), 1);
+        let d = &c.divergences[0];
+        assert_eq!((d.op, d.stage.as_str()), (30, "fog"));
+        assert_eq!(
+            d.values[0].1.as_deref(),
+            Some("fog off -> (100,  50, 200, 255)")
+        );
+        assert_eq!(
+            d.values[1].1.as_deref(),
+            Some("fog off -> (101,  50, 200, 255)")
+        );
+    }
+
+    #[test]
+    fn a_trace_without_dumps_runs_to_its_end() {
+        let trace = TRACE.replace("dump front t_front.raw\n", "");
+        let h = history_of("nodump", &trace, 40, 40).unwrap();
+        assert!(h.dump.is_none() && h.last_write.is_none());
+        assert_eq!(h.events.len(), 2);
+        assert_eq!(h.ops_run, 30);
+        // A pixel outside the triangle: the fill alone.
+        let h = history_of("fill", TRACE, 600, 400).unwrap();
+        assert_eq!(h.events.len(), 1);
+        assert_eq!(h.events[0].operation, Operation::Fastfill { number: 1 });
+        assert_eq!(h.last_write.map(|w| (w.op, w.value)), Some((18, 0)));
+        assert_eq!(h.dump.map(|d| d.value), Some(0));
+    }
+}
