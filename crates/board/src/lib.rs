@@ -30,7 +30,7 @@ pub use diagnostics::{Diagnostic, Diagnostics};
 pub use method::Method;
 pub use model::Model;
 pub use pixelfx::watch;
-pub use pixelfx::{PathCounts, PixelProfile, Stats};
+pub use pixelfx::{Kill, PathCounts, PixelProfile, Stats};
 pub use reference::{vote, Reference};
 pub use state::{StateError, StateInfo};
 pub use texelfx::{TexelProfile, Tmu};
