@@ -488,11 +488,12 @@ impl PixelEvent {
                 aux_word,
             } => (*colour_word, *aux_word),
         };
+        // The aux word is written after the colour word: where the two alias, its
+        // value is the one left.
         [c, a]
             .into_iter()
             .flatten()
-            .filter(|w| w.index == index)
-            .last()
+            .rfind(|w| w.index == index)
             .map(|w| w.value)
     }
 }

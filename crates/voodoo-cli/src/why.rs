@@ -668,7 +668,7 @@ pub fn compare(histories: Vec<History>) -> Comparison {
         if events.iter().any(Option::is_none) {
             let values = names
                 .zip(&events)
-                .map(|(n, e)| (n, e.map(|e| heading(e))))
+                .map(|(n, e)| (n, e.map(heading)))
                 .collect();
             divergences.push(Divergence {
                 op,
