@@ -21,6 +21,10 @@ use sst1_trace::{open_trace, TraceOp};
 /// (the newest; a triangle's setup is a few dozen).
 const MAX_WRITES_SHOWN: usize = 96;
 
+/// The most events a history keeps, the newest (each carries its state and setup, a
+/// few KiB): a pixel a long trace redraws every frame has a bounded history.
+pub const MAX_HISTORY: usize = 4096;
+
 /// The largest frame-buffer coordinate (the LFB and the Y-origin flip address 10 bits).
 const MAX_COORD: i32 = 1023;
 
@@ -109,7 +113,7 @@ pub struct History {
     /// Ops run.
     pub ops_run: u64,
     pub events: Vec<OpEvent>,
-    /// Older events left out (more than the watch holds).
+    /// Older events left out (more than [`MAX_HISTORY`]).
     pub dropped: u64,
     /// The last event that wrote the dump's word at the pixel, if any.
     pub last_write: Option<LastWrite>,
@@ -202,7 +206,7 @@ pub fn history(
             let after = board.stats();
             let operation = regs.operation(&op, &before, &after);
             for event in new {
-                if events.len() == sst1_board::watch::MAX_EVENTS {
+                if events.len() == MAX_HISTORY {
                     events.pop_front();
                     dropped += 1;
                 }
