@@ -810,6 +810,32 @@ mod tests {
     }
 
     #[test]
+    fn a_long_history_keeps_the_newest_events() {
+        // A 1x1 clip rectangle at (0, 0) and more fills of it than a history keeps.
+        let init = TRACE.split("w 0x000148").next().unwrap();
+        let mut trace = format!("{init}w 0x000118 0x1\nw 0x00011c 0x1\nw 0x000110 0x200\n");
+        let fills = MAX_HISTORY + 5;
+        for i in 0..fills {
+            trace += &format!("w 0x000148 {i:#x}\nw 0x000124 0x0\n");
+        }
+        trace += "dump front f.raw\n";
+        let h = history_of("long", &trace, 0, 0).unwrap();
+        assert_eq!((h.events.len(), h.dropped), (MAX_HISTORY, 5));
+        let last = h.events.last().unwrap();
+        assert_eq!(
+            last.operation,
+            Operation::Fastfill {
+                number: fills as u64
+            }
+        );
+        // color1 = 0x1003 (the last fill's number) as RGB565, undithered.
+        let c = (fills - 1) as u32;
+        let rgb565 = ((c >> 19 & 0x1f) << 11 | (c >> 10 & 0x3f) << 5 | (c >> 3 & 0x1f)) as u16;
+        assert_eq!(h.dump.as_ref().map(|d| d.value), Some(rgb565));
+        assert_eq!(h.last_write.map(|w| w.value), Some(rgb565));
+    }
+
+    #[test]
     fn a_trace_without_dumps_runs_to_its_end() {
         let trace = TRACE.replace("dump front t_front.raw\n", "");
         let h = history_of("nodump", &trace, 40, 40).unwrap();
