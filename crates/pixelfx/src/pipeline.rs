@@ -236,7 +236,7 @@ impl Fbi {
 
         // --- combine, alpha test ---
         let local = color_path::select_local(color_path, &inputs);
-        let combined = color_path::combine(color_path, other, local, texel.a);
+        let combined = stages.combined(color_path::combine(color_path, other, local, texel.a));
         if test_combined && !test_alpha(combined.a) {
             return Err(Kill::AlphaFunc);
         }

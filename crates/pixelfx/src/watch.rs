@@ -125,8 +125,9 @@ pub struct ColourStage {
     pub other: StageColour,
     /// `c_local` / `a_local` as selected.
     pub local: StageColour,
-    /// The colour and alpha combine's result.
-    pub combined: StageColour,
+    /// The colour and alpha combine's result; `None` where the pixel was killed before
+    /// it (chroma key, alpha mask, alpha test).
+    pub combined: Option<StageColour>,
 }
 
 /// The fog unit (spec 5.17 `fogMode`).
@@ -317,10 +318,16 @@ pub(crate) trait StageSink {
         texel
     }
 
-    /// The colour path's inputs and its `other` selection (the combine is computed from
-    /// them by the same functions the pipeline calls).
+    /// The colour path's inputs and its `other` selection (`local` is selected from
+    /// them by the function the pipeline calls).
     #[inline(always)]
     fn colour_path(&mut self, _color_path: FbzColorPath, _inputs: &Inputs, _other: Rgba) {}
+
+    /// The colour and alpha combine's result; returns it.
+    #[inline(always)]
+    fn combined(&mut self, combined: Rgba) -> Rgba {
+        combined
+    }
 
     /// The fog unit's output.
     #[inline(always)]
@@ -398,12 +405,18 @@ impl StageSink for PixelStages {
     }
 
     fn colour_path(&mut self, color_path: FbzColorPath, inputs: &Inputs, other: Rgba) {
-        let local = color_path::select_local(color_path, inputs);
         self.colour = Some(ColourStage {
             other: other.into(),
-            local: local.into(),
-            combined: color_path::combine(color_path, other, local, inputs.texel.a).into(),
+            local: color_path::select_local(color_path, inputs).into(),
+            combined: None,
         });
+    }
+
+    fn combined(&mut self, combined: Rgba) -> Rgba {
+        if let Some(c) = &mut self.colour {
+            c.combined = Some(combined.into());
+        }
+        combined
     }
 
     fn fog(&mut self, enabled: bool, output: Rgba) {

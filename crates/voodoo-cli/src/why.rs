@@ -478,7 +478,9 @@ fn pixel_lines(s: &PixelStages) -> Vec<(String, String)> {
     if let Some(c) = &s.colour {
         line("other", colour(&c.other));
         line("local", colour(&c.local));
-        line("combine", colour(&c.combined));
+        if let Some(combined) = &c.combined {
+            line("combine", colour(combined));
+        }
     }
     if let Some(f) = &s.fog {
         let on = if f.enabled { "on" } else { "off" };
