@@ -838,6 +838,25 @@ mod tests {
     }
 
     #[test]
+    fn a_clipped_pixel_is_killed_by_the_clip_rectangle() {
+        // The triangle covers (40, 40); a clip rectangle of columns 0..30 leaves it out.
+        let trace = TRACE.replace("w 0x000008 0x140", "w 0x000118 0x1e\nw 0x000008 0x140");
+        let h = history_of("clip", &trace, 40, 40).unwrap();
+        assert_eq!(h.events.len(), 2);
+        assert_eq!(h.events[1].operation, Operation::Triangle { number: 1 });
+        assert_eq!(
+            h.events[1].event,
+            PixelEvent::Clipped {
+                source: sst1_board::watch::SourceKind::Triangle
+            }
+        );
+        assert_eq!(h.last_write.map(|w| w.op), Some(18));
+        // Inside the rectangle, the same triangle shades the pixel.
+        let h = history_of("inside", &trace, 29, 40).unwrap();
+        assert!(matches!(h.events[1].event, PixelEvent::Shaded(_)));
+    }
+
+    #[test]
     fn a_trace_without_dumps_runs_to_its_end() {
         let trace = TRACE.replace("dump front t_front.raw\n", "");
         let h = history_of("nodump", &trace, 40, 40).unwrap();
