@@ -260,7 +260,9 @@ impl Board {
     /// [`Board::dump_buffer`] lays rows out) from now on: every operation that reaches
     /// it leaves a [`watch::PixelEvent`] ([`Board::take_pixel_events`]). Forces the
     /// generic path ([`Board::set_generic_path`]), whose stages record their values;
-    /// pixels and counters are the same as without the watch.
+    /// pixels and counters are the same as without the watch. A later
+    /// [`Board::set_method`] or `set_generic_path(false)` gives the span kernels back,
+    /// which record nothing: choose those first.
     pub fn watch_pixel(&mut self, x: i32, row: i32) {
         self.set_generic_path(true);
         self.fbi.set_watch(Some(watch::PixelWatch::new(x, row)));
