@@ -29,7 +29,8 @@ pub use bus::aperture_offset;
 pub use diagnostics::{Diagnostic, Diagnostics};
 pub use method::Method;
 pub use model::Model;
-pub use pixelfx::{PathCounts, PixelProfile, Stats};
+pub use pixelfx::watch;
+pub use pixelfx::{Kill, PathCounts, PixelProfile, Stats};
 pub use reference::{vote, Reference};
 pub use state::{StateError, StateInfo};
 pub use texelfx::{TexelProfile, Tmu};
@@ -253,6 +254,43 @@ impl Board {
     /// TMU `index` (0 is the one next to the FBI), for inspection; `None` past the last.
     pub fn tmu(&self, index: usize) -> Option<&Tmu> {
         self.tmus.get(index)
+    }
+
+    /// Record the history of pixel `(x, row)` (`row`: the frame-buffer row, as
+    /// [`Board::dump_buffer`] lays rows out) from now on: every operation that reaches
+    /// it leaves a [`watch::PixelEvent`] ([`Board::take_pixel_events`]). Forces the
+    /// generic path ([`Board::set_generic_path`]), whose stages record their values;
+    /// pixels and counters are the same as without the watch. A later
+    /// [`Board::set_method`] or `set_generic_path(false)` gives the span kernels back,
+    /// which record nothing: choose those first.
+    pub fn watch_pixel(&mut self, x: i32, row: i32) {
+        self.set_generic_path(true);
+        self.fbi.set_watch(Some(watch::PixelWatch::new(x, row)));
+    }
+
+    /// The events of the watched pixel ([`Board::watch_pixel`]) since the last call,
+    /// oldest first (empty without a watch).
+    pub fn take_pixel_events(&mut self) -> Vec<watch::PixelEvent> {
+        self.fbi.watch_mut().map(|w| w.take()).unwrap_or_default()
+    }
+
+    /// Events of the watched pixel dropped because more than [`watch::MAX_EVENTS`] were
+    /// waiting to be taken.
+    pub fn pixel_events_dropped(&mut self) -> u64 {
+        self.fbi.watch_mut().map_or(0, |w| w.dropped())
+    }
+
+    /// The frame-buffer word index of pixel `(x, row)` of buffer `which` (what
+    /// [`watch::PixelEvent::wrote`] takes), or `None` where the buffer or the word does
+    /// not exist.
+    pub fn buffer_word(&self, which: BufferKind, x: i32, row: i32) -> Option<usize> {
+        let fb = &self.fbi.fb;
+        let base = match which {
+            BufferKind::Front => fb.rgb_base(fb.front),
+            BufferKind::Back => fb.rgb_base(fb.back),
+            BufferKind::Aux => fb.aux_base(),
+        }?;
+        fb.index(base, x, row)
     }
 
     /// The buffer as `width * height` raw 16-bit values, row 0 = first row in memory.

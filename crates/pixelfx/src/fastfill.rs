@@ -66,5 +66,8 @@ impl Fbi {
                 }
             }
         }
+        if self.watch.is_some() {
+            self.watch_fill(low..high, left..right, mode.y_origin(), dest, aux);
+        }
     }
 }

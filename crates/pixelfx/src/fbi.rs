@@ -55,6 +55,8 @@ pub struct Fbi {
     pub path_counts: PathCounts,
     /// Render threads for large triangles ([`Fbi::set_threads`]).
     pub(crate) threads: usize,
+    /// The pixel whose history is recorded ([`Fbi::set_watch`]), if any.
+    pub(crate) watch: Option<Box<crate::watch::PixelWatch>>,
 }
 
 /// How many triangle pixels (inside the clip rectangle) each path shaded: what
@@ -98,6 +100,7 @@ impl Fbi {
             generic_path: false,
             path_counts: PathCounts::default(),
             threads: 1,
+            watch: None,
         }
     }
 

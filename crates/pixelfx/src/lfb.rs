@@ -16,6 +16,7 @@ use crate::model::PixelModel;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::{LfbOrdering, LfbWordSwap};
 use crate::stats::Kill;
+use crate::watch::{NoStages, PixelEvent, SourceKind};
 
 /// One pixel decoded from an LFB write.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -162,6 +163,31 @@ impl Fbi {
     /// `color1` and `zaColor`, as the formats without them do (MAME takes the bus
     /// data).
     pub fn lfb_write_lanes<M: PixelModel>(&mut self, offset: u32, data: u32, lanes: u32) {
+        // One test per write: only the instance for a watched pixel looks for it
+        // (`crate::watch`), so the other costs nothing per pixel.
+        if self.watch.is_some() {
+            self.lfb_write_watched::<M>(offset, data, lanes)
+        } else {
+            self.lfb_write_as::<M, false>(offset, data, lanes)
+        }
+    }
+
+    /// [`Fbi::lfb_write_lanes`] while a pixel is watched (apart, so that the unwatched
+    /// instance is compiled as if the watch did not exist).
+    #[cold]
+    #[inline(never)]
+    fn lfb_write_watched<M: PixelModel>(&mut self, offset: u32, data: u32, lanes: u32) {
+        self.lfb_write_as::<M, true>(offset, data, lanes)
+    }
+
+    /// [`Fbi::lfb_write_lanes`], recording the watched pixel's events if `WATCH`.
+    #[inline(always)]
+    fn lfb_write_as<M: PixelModel, const WATCH: bool>(
+        &mut self,
+        offset: u32,
+        data: u32,
+        lanes: u32,
+    ) {
         let mut lanes = lanes;
         let profile = M::pixel(&self.profile());
         let mut mode = self.lfb_mode();
@@ -230,8 +256,14 @@ impl Fbi {
                 let x = x0 + i as i32;
                 self.stats.pixels_in += 1;
                 let (left, right, low, high) = st.clip;
+                let watched = WATCH && self.watch.as_ref().is_some_and(|w| w.is(x, scry));
                 if fbz.enable_clipping() && (x < left || x >= right || scry < low || scry >= high) {
                     self.count(Err(Kill::Clip));
+                    if watched {
+                        self.record(PixelEvent::Clipped {
+                            source: SourceKind::Lfb,
+                        });
+                    }
                     continue;
                 }
                 let depth = p.depth.unwrap_or(za as u16);
@@ -250,7 +282,11 @@ impl Fbi {
                 };
                 let mut stipple = st.stipple;
                 let prow = profile.pattern_row.row(y, scry);
-                let r = self.shade_pixel::<M>(
+                if watched {
+                    self.shade_watched_lfb::<M>(&st, x, prow, scry, &it, colour, &mut stipple);
+                    continue;
+                }
+                let r = self.shade_pixel::<M, NoStages>(
                     &st,
                     x,
                     prow,
@@ -259,6 +295,7 @@ impl Fbi {
                     Source::Lfb(colour),
                     &mut stipple,
                     Rgba::default,
+                    &mut NoStages,
                 );
                 self.count(r);
             }
@@ -288,6 +325,9 @@ impl Fbi {
                     }
                 }
                 self.stats.pixels_out += 1;
+                if WATCH && self.watch.as_ref().is_some_and(|w| w.is(x, scry)) {
+                    self.watch_lfb_direct(dest, x, scry, p, fbz.enable_alpha_planes());
+                }
             }
         }
     }

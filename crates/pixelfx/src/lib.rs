@@ -25,6 +25,7 @@ pub mod span;
 pub mod state;
 pub mod stats;
 pub mod stipple;
+pub mod watch;
 
 pub use fbi::{Command, Fbi, PathCounts};
 pub use model::{PixelModel, RuntimeProfile};
@@ -33,3 +34,4 @@ pub use raster::{NoTexture, TexelSource};
 pub use span::{Lanes, LANES};
 pub use state::FbiState;
 pub use stats::{Kill, Stats};
+pub use watch::{PixelEvent, PixelStages, PixelWatch, TmuStage};

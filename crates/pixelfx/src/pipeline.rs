@@ -21,6 +21,7 @@ use crate::iter::{wfloat, Iterated};
 use crate::model::PixelModel;
 use crate::profile::{ClipRightEdge, OverrideTexel, ZAlphaByte};
 use crate::stats::Kill;
+use crate::watch::StageSink;
 use crate::{alpha_test, blend, depth, fog, stipple};
 
 /// The mode registers and constants of one drawing operation, decoded once.
@@ -119,8 +120,13 @@ impl Fbi {
     /// `M` is the model of the chip ([`crate::model`]). This is the reference path: every
     /// mode bit is tested for every pixel. The span kernels ([`crate::span`]) run the same
     /// stages a chunk of pixels at a time.
-    #[inline]
-    pub(crate) fn shade_pixel<M: PixelModel>(
+    ///
+    /// `stages` is told the value of every stage ([`crate::watch`]): [`NoStages`]
+    /// (nothing, at no cost) for every pixel but a watched one.
+    ///
+    /// [`NoStages`]: crate::watch::NoStages
+    #[inline(always)]
+    pub(crate) fn shade_pixel<M: PixelModel, S: StageSink>(
         &mut self,
         st: &DrawState,
         x: i32,
@@ -130,6 +136,7 @@ impl Fbi {
         source: Source,
         stipple_state: &mut u32,
         texel: impl FnOnce() -> Rgba,
+        stages: &mut S,
     ) -> Result<(), Kill> {
         let mode = st.mode;
         let color_path = st.color_path;
@@ -157,6 +164,7 @@ impl Fbi {
         let bias = mode.enable_depth_bias().then_some(st.za_color as u16);
         let depth_value = depth::value(mode.wbuffer_select(), z16, wf, bias);
         let aux_index = st.aux.and_then(|a| self.fb.index(a, x, scry));
+        stages.iterated(it, &source, clamp, z16, wf, depth_value);
         if mode.enable_depthbuffer() {
             let source_depth = if mode.depth_source_compare() {
                 (st.za_color & 0xffff) as i32
@@ -169,6 +177,7 @@ impl Fbi {
                 Some(d) => depth::test(mode.depth_function(), source_depth, d),
                 None => mode.depth_function() != sst1_regs::DepthFunction::Never,
             };
+            stages.depth(mode.depth_function(), source_depth, dest, pass);
             if !pass {
                 return Err(Kill::DepthFunc);
             }
@@ -176,7 +185,7 @@ impl Fbi {
 
         // --- colour selection ---
         let texel = if color_path.texture_enable() && st.fetch_texel {
-            texel()
+            stages.texel(texel())
         } else {
             Rgba::default()
         };
@@ -207,6 +216,8 @@ impl Fbi {
             Source::Lfb(c) => c,
         };
 
+        stages.colour_path(color_path, &inputs, other);
+
         // --- chroma key, alpha mask ---
         if mode.enable_chromakey() && color_path::chroma_killed(other, st.chroma_key) {
             return Err(Kill::Chroma);
@@ -225,7 +236,7 @@ impl Fbi {
 
         // --- combine, alpha test ---
         let local = color_path::select_local(color_path, &inputs);
-        let combined = color_path::combine(color_path, other, local, texel.a);
+        let combined = stages.combined(color_path::combine(color_path, other, local, texel.a));
         if test_combined && !test_alpha(combined.a) {
             return Err(Kill::AlphaFunc);
         }
@@ -246,6 +257,7 @@ impl Fbi {
             &fog_input,
             profile.fog,
         );
+        stages.fog(fog_mode.enable_fog(), fogged);
 
         // --- alpha blend ---
         let dest_index = self.fb.index(st.dest, x, scry);
@@ -259,7 +271,7 @@ impl Fbi {
                     .dither
                     .matrix_value(st.dither_matrix, x as u32, prow as u32),
             };
-            blend::alpha_blend(am, mode, &input, profile.blend)
+            stages.blend(&input, blend::alpha_blend(am, mode, &input, profile.blend))
         } else {
             fogged
         };
@@ -280,6 +292,12 @@ impl Fbi {
                     depth_value as u16
                 };
             }
+        }
+        if S::RECORDS {
+            let rgb = dest_index.filter(|_| mode.rgb_buffer_mask());
+            let aux = aux_index.filter(|_| crate::span::aux_enabled(mode, profile.aux_write));
+            let dither_value = self.dither.matrix_value(st.dither, x as u32, prow as u32);
+            stages.write(out, st.dither, dither_value, &self.fb.ram, rgb, aux);
         }
         Ok(())
     }

@@ -13,6 +13,7 @@ use crate::span::{
     chunk_len, ChunkAt, ChunkJob, Lanes, Memory, Shader, TriangleConsts, Words, LANES,
 };
 use crate::stats::Stats;
+use crate::watch::NoStages;
 use crate::{box86, setup};
 
 /// What the TMU chain gives the FBI for one pixel.
@@ -35,6 +36,21 @@ pub trait TexelSource {
     /// The texel for the pixel at offset `(dx, dy)` from vertex A's pixel, at screen
     /// position `(x, y)`.
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba;
+
+    /// [`TexelSource::texel`] for a watched pixel ([`crate::watch`]): the same texel,
+    /// with the same effect on any state of the source, and each TMU's part of it
+    /// pushed to `tmus`, upstream TMU first. This default pushes nothing.
+    fn texel_stages(
+        &mut self,
+        dx: i32,
+        dy: i32,
+        x: i32,
+        y: i32,
+        tmus: &mut Vec<crate::watch::TmuStage>,
+    ) -> Rgba {
+        let _ = tmus;
+        self.texel(dx, dy, x, y)
+    }
 
     /// The texels of the live lanes of one chunk of a span ([`crate::span`]): lane `i`
     /// is the pixel at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`; for each
@@ -171,6 +187,10 @@ impl Fbi {
             self.stats.pixels_in += (stop - start) as u64;
             self.stats.spans += 1;
             let scry = self.screen_y(span.y, flip);
+            // The watch forces the reference path, so only it looks for the watched pixel.
+            if !SPANS {
+                self.watch_clip(st, scry, start, stop);
+            }
             if mode.enable_clipping() {
                 let (left, right, low, high) = st.clip;
                 if scry < low || scry >= high {
@@ -287,22 +307,29 @@ impl Fbi {
             return;
         }
         self.path_counts.reference += (stop - start) as u64;
+        let watched = self.watched_column(scry);
         let mut it = Iterated::at(&params, start - ax, dy);
         for x in start..stop {
             if let Some(c) = &copy {
                 stipple = c.at((x - start) as usize);
             }
-            let r = self.shade_pixel::<M>(
-                st,
-                x,
-                prow,
-                scry,
-                &it,
-                Source::Triangle,
-                &mut stipple,
-                || tex.texel(x - ax, dy, x, y),
-            );
-            self.count(r);
+            if watched == Some(x) {
+                let at = (x - ax, dy, x, y);
+                self.shade_watched::<M, T>(st, prow, scry, &it, &mut stipple, tex, at);
+            } else {
+                let r = self.shade_pixel::<M, NoStages>(
+                    st,
+                    x,
+                    prow,
+                    scry,
+                    &it,
+                    Source::Triangle,
+                    &mut stipple,
+                    || tex.texel(x - ax, dy, x, y),
+                    &mut NoStages,
+                );
+                self.count(r);
+            }
             it.step_x(&params);
         }
     }

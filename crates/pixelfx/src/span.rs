@@ -725,7 +725,7 @@ impl Fbi {
             if let Some(c) = copy {
                 *stipple_state = c.at((x - at.span_start) as usize);
             }
-            let r = self.shade_pixel::<M>(
+            let r = self.shade_pixel::<M, crate::watch::NoStages>(
                 st,
                 x,
                 at.prow,
@@ -734,6 +734,7 @@ impl Fbi {
                 Source::Triangle,
                 stipple_state,
                 || tex.texel(x - at.ax, at.dy, x, at.y),
+                &mut crate::watch::NoStages,
             );
             self.count(r);
             it.step_x(&p);

@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 /// Why the pixel pipeline dropped a pixel. `pipeline.rs` turns these into counters.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Kill {
     /// Outside the clip rectangle.
     Clip,

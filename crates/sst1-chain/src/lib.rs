@@ -7,9 +7,11 @@
 use core::marker::PhantomData;
 
 use pixelfx::span::{Lanes, LANES};
-use pixelfx::TexelSource;
+use pixelfx::{TexelSource, TmuStage};
 use sst1_regs::Rgba;
-use texelfx::{ChainModel, ColourLanes, LaneOutput, LaneScratch, TexelModel, Tmu, ZERO_COLOUR};
+use texelfx::{
+    ChainModel, ColourLanes, LaneOutput, LaneScratch, TexelModel, Tmu, TmuPixel, ZERO_COLOUR,
+};
 
 // The FBI's chunks are the TMUs' lanes.
 const _: () = assert!(LANES == texelfx::LANES);
@@ -63,6 +65,33 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
                 let mut other = Rgba::default();
                 for t in self.tmus.iter_mut().rev() {
                     other = t.texel::<M>(dx, dy, x, y, other);
+                }
+                other
+            }
+        }
+    }
+
+    /// [`Chain::texel`] with each TMU's part ([`Tmu::texel_traced`]): the same TMU
+    /// calls in the same order, so the same texel and the same cache effects.
+    fn texel_stages(
+        &mut self,
+        dx: i32,
+        dy: i32,
+        x: i32,
+        y: i32,
+        stages: &mut Vec<TmuStage>,
+    ) -> Rgba {
+        match self.tmus {
+            [t0, rest @ ..] if self.wiring == ChainModel::Box86 => {
+                box86_texel_stages::<M>(t0, rest.first_mut(), (dx, dy, x, y), stages)
+            }
+            _ => {
+                // Upstream first, as in `texel`.
+                let mut other = Rgba::default();
+                for t in self.tmus.iter_mut().rev() {
+                    let p = t.texel_traced::<M>(dx, dy, x, y, other);
+                    stages.push(stage(t, &p));
+                    other = p.output;
                 }
                 other
             }
@@ -218,6 +247,54 @@ fn box86_texel<M: TexelModel>(
             let other = t1.texel_box86_upstream::<M>(dx, dy, x, y, mode);
             t0.texel::<M>(dx, dy, x, y, other)
         }
+    }
+}
+
+/// [`box86_texel`] with each TMU's part ([`Tmu::texel_traced`]), upstream first.
+fn box86_texel_stages<M: TexelModel>(
+    t0: &mut Tmu,
+    t1: Option<&mut Tmu>,
+    (dx, dy, x, y): (i32, i32, i32, i32),
+    stages: &mut Vec<TmuStage>,
+) -> Rgba {
+    let mode = t0.texture_mode();
+    let mut one = |t: &mut Tmu, p: TmuPixel| {
+        stages.push(stage(t, &p));
+        p.output
+    };
+    match t1 {
+        None => {
+            let p = t0.texel_uncombined_traced::<M>(dx, dy, x, y);
+            one(t0, p)
+        }
+        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => {
+            let p = t0.texel_uncombined_traced::<M>(dx, dy, x, y);
+            one(t0, p)
+        }
+        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => {
+            let p = t1.texel_uncombined_traced::<M>(dx, dy, x, y);
+            one(t1, p)
+        }
+        Some(t1) => {
+            let p = t1.texel_box86_upstream_traced::<M>(dx, dy, x, y, mode);
+            let other = one(t1, p);
+            let p = t0.texel_traced::<M>(dx, dy, x, y, other);
+            one(t0, p)
+        }
+    }
+}
+
+/// A TMU's part of a texel as the pixel history records it.
+fn stage(t: &Tmu, p: &TmuPixel) -> TmuStage {
+    TmuStage {
+        tmu: t.index(),
+        s_32: p.s_32,
+        t_32: p.t_32,
+        w_32: p.w_32,
+        lod_8_8: p.lod_8_8,
+        lod_fraction: p.lod_fraction,
+        texel: p.texel.into(),
+        output: p.output.into(),
     }
 }
 

@@ -396,6 +396,23 @@ enum Output {
     Box86Upstream(u32),
 }
 
+/// What one TMU did for one pixel ([`Tmu::texel_traced`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TmuPixel {
+    /// Iterated S, T, W at the pixel (.32: S and T 14.18 << 14, W 2.30 << 2).
+    pub s_32: i64,
+    pub t_32: i64,
+    pub w_32: i64,
+    /// The clamped LOD, 8.8.
+    pub lod_8_8: i32,
+    /// The LOD fraction the combine unit sees.
+    pub lod_fraction: u8,
+    /// The filtered texel.
+    pub texel: Rgba,
+    /// The TMU's output (the combine unit's, or the texel uncombined).
+    pub output: Rgba,
+}
+
 /// One texture mapping unit: its registers, texture memory, NCC tables and palette.
 pub struct Tmu {
     /// TMU number, 0..=2.
@@ -684,13 +701,64 @@ impl Tmu {
         self.output::<M>(dx, dy, x, y, Output::Box86Upstream(downstream_mode))
     }
 
+    /// [`Tmu::texel`] for a watched pixel (pixel history, `pixelfx::watch`): the same
+    /// output, with the same effect on the TMU's caches, and the values it came from.
+    pub fn texel_traced<M: TexelModel>(
+        &mut self,
+        dx: i32,
+        dy: i32,
+        x: i32,
+        y: i32,
+        other: Rgba,
+    ) -> TmuPixel {
+        self.output_traced::<M>(dx, dy, x, y, Output::Combined(other))
+    }
+
+    /// [`Tmu::texel_uncombined`] for a watched pixel ([`Tmu::texel_traced`]).
+    pub fn texel_uncombined_traced<M: TexelModel>(
+        &mut self,
+        dx: i32,
+        dy: i32,
+        x: i32,
+        y: i32,
+    ) -> TmuPixel {
+        self.output_traced::<M>(dx, dy, x, y, Output::Texel)
+    }
+
+    /// [`Tmu::texel_box86_upstream`] for a watched pixel ([`Tmu::texel_traced`]).
+    pub fn texel_box86_upstream_traced<M: TexelModel>(
+        &mut self,
+        dx: i32,
+        dy: i32,
+        x: i32,
+        y: i32,
+        downstream_mode: u32,
+    ) -> TmuPixel {
+        self.output_traced::<M>(dx, dy, x, y, Output::Box86Upstream(downstream_mode))
+    }
+
     fn output<M: TexelModel>(&mut self, dx: i32, dy: i32, x: i32, y: i32, what: Output) -> Rgba {
+        self.output_traced::<M>(dx, dy, x, y, what).output
+    }
+
+    /// The TMU's output for one pixel and what it came from; [`Tmu::output`] keeps the
+    /// output alone (and the compiler drops the rest).
+    #[inline(always)]
+    fn output_traced<M: TexelModel>(
+        &mut self,
+        dx: i32,
+        dy: i32,
+        x: i32,
+        y: i32,
+        what: Output,
+    ) -> TmuPixel {
         let profile = M::texel(&self.profile);
         if self.lut_stale {
             self.rebuild_lut();
         }
         let at = |i| self.iterated(i, dx, dy);
-        let smp = self.sample::<M>(at(0), at(1), at(2), x, y);
+        let (s, t, w) = (at(0), at(1), at(2));
+        let smp = self.sample::<M>(s, t, w, x, y);
         let factors = || Factors {
             detail: detail_factor(self.t_detail, smp.lod, profile.detail),
             lod_fraction: smp.lod_fraction,
@@ -709,7 +777,21 @@ impl Tmu {
                 &TextureCombine::from_texture_mode(mode),
             ),
         };
-        Rgba { r, g, b, a }
+        let [tr, tg, tb, ta] = smp.texel;
+        TmuPixel {
+            s_32: s,
+            t_32: t,
+            w_32: w,
+            lod_8_8: smp.lod,
+            lod_fraction: smp.lod_fraction,
+            texel: Rgba {
+                r: tr,
+                g: tg,
+                b: tb,
+                a: ta,
+            },
+            output: Rgba { r, g, b, a },
+        }
     }
 
     /// The raw `textureMode` register.

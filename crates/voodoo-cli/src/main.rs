@@ -13,6 +13,7 @@ mod chart;
 mod demo;
 mod play;
 mod plot;
+mod why;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -230,6 +231,29 @@ enum Command {
         #[arg(long, value_name = "DIR")]
         chart: Option<PathBuf>,
     },
+    /// The history of one pixel: every operation that touched it up to a dump (triangles
+    /// with the register writes that set their state, fast fills, LFB writes), and for
+    /// each shaded pixel the value of every pipeline stage and why it was killed, if it
+    /// was (docs/pixel-history.md). The pixel is shaded on the reference path.
+    Why {
+        /// Trace file: text or binary, optionally gzip-compressed.
+        trace: PathBuf,
+        /// Column.
+        x: i32,
+        /// Row of the dump (frame-buffer row: row 0 is the first in memory).
+        y: i32,
+        /// Stop at this dump (1 is the trace's first). Default: the last dump, or the
+        /// end of a trace without one.
+        #[arg(long, value_name = "N")]
+        dump: Option<u64>,
+        /// The model (as for `replay`); `vote` takes the history on each reference
+        /// model's board and shows at which stage they part ways.
+        #[arg(long, value_enum)]
+        model: Option<Model>,
+        /// Print JSON (for tools) instead of text.
+        #[arg(long)]
+        json: bool,
+    },
     /// Convert a trace between the text and binary forms, chosen by OUT's extension:
     /// `.vtrace` binary, `.vtrace.gz` gzip binary, `.gz` gzip text, anything else text.
     Convert {
@@ -418,6 +442,14 @@ fn main() -> ExitCode {
         Command::Info { trace } => info(&trace),
         Command::Reg { register, value } => reg(&register, &value),
         Command::Convert { input, output } => convert(&input, &output),
+        Command::Why {
+            trace,
+            x,
+            y,
+            dump,
+            model,
+            json,
+        } => why_command(&trace, x, y, dump, model.unwrap_or(Model::Hardware), json),
         Command::Gen {
             scene,
             seed,
@@ -1064,6 +1096,48 @@ fn reg(register: &str, value: &str) -> Result<(), String> {
         offset & 0x3fc,
         map::decode_pretty(offset, value)
     );
+    Ok(())
+}
+
+/// `voodoo why`: the pixel's history on one model, or the references compared.
+fn why_command(
+    trace: &Path,
+    x: i32,
+    y: i32,
+    dump: Option<u64>,
+    model: Model,
+    json: bool,
+) -> Result<(), String> {
+    let req = why::Request { trace, x, y, dump };
+    let text = match model.profile() {
+        Some(profile) => {
+            let name = match model {
+                Model::Mame => "mame",
+                Model::DosboxStaging => "dosbox-staging",
+                Model::Box86 => "86box",
+                _ => "hardware",
+            };
+            let h = why::history(&req, name, profile)?;
+            if json {
+                serde_json::to_string_pretty(&h).map_err(|e| e.to_string())?
+            } else {
+                why::render(&h)
+            }
+        }
+        None => {
+            let histories = why::references()
+                .into_iter()
+                .map(|(name, profile)| why::history(&req, name, profile))
+                .collect::<Result<Vec<_>, String>>()?;
+            let c = why::compare(histories);
+            if json {
+                serde_json::to_string_pretty(&c).map_err(|e| e.to_string())?
+            } else {
+                why::render_comparison(&c)
+            }
+        }
+    };
+    println!("{}", text.trim_end());
     Ok(())
 }
 
