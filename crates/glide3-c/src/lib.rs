@@ -68,23 +68,7 @@ pub type ErrorFn = Option<unsafe extern "C" fn(*const c_char, FxBool)>;
 
 /// The emulated board, shared by the Glide context (which writes it through the bus)
 /// and the C layer (which reads it for PNG output).
-#[derive(Clone)]
-struct SharedBoard(Rc<RefCell<Board>>);
-
-impl RegisterBus for SharedBoard {
-    fn write32(&mut self, addr: u32, value: u32) {
-        self.0.borrow_mut().write32(addr, value);
-    }
-    fn read32(&mut self, addr: u32) -> u32 {
-        self.0.borrow_mut().read32(addr)
-    }
-    fn pci_write(&mut self, offset: u32, value: u32) {
-        self.0.borrow_mut().pci_write(offset, value);
-    }
-    fn host_wait(&mut self, cycles: u64) {
-        self.0.borrow_mut().host_wait(cycles);
-    }
-}
+type SharedBoard = Rc<RefCell<Board>>;
 
 /// The `sst1_trace` recorder wrapping the board, streaming into the trace file; shared so
 /// the C layer can add dump points and finish the file at shutdown.
@@ -465,7 +449,7 @@ fn save_board_state(ctx: &Ctx, path: &std::path::Path) {
         .recording
         .as_ref()
         .map(|r| r.recorder.borrow().log().ops_written());
-    let board = ctx.board.0.borrow();
+    let board = ctx.board.borrow();
     let bytes = match ops {
         Some(n) => board.save_state_after(n),
         None => board.save_state(),
@@ -478,7 +462,7 @@ fn save_board_state(ctx: &Ctx, path: &std::path::Path) {
 /// Loads the board saved at `path` (`VOODOO_LOAD_STATE`); a file that cannot be read or
 /// is refused is said on stderr and the board stays as it is.
 fn load_board_state(ctx: &Ctx, path: &std::path::Path) {
-    let mut board = ctx.board.0.borrow_mut();
+    let mut board = ctx.board.borrow_mut();
     let limit = sst1_board::state::max_state_len(board.config()) as u64;
     let loaded = sst1_trace::read_file_bounded(path, limit)
         .map_err(|e| e.to_string())
@@ -517,13 +501,13 @@ fn after_swap(ctx: &mut Ctx) {
         }
     }
     if let Some(w) = &ctx.window {
-        w.show(&ctx.board.0.borrow());
+        w.show(&ctx.board.borrow());
     }
     let Some((path, swaps)) = ctx.png.clone() else {
         return;
     };
     match swaps {
-        None => save_png(&ctx.board.0.borrow(), &path),
+        None => save_png(&ctx.board.borrow(), &path),
         Some(list) if list.contains(&n) => {
             let out = if list.len() > 1 {
                 match path.rfind('.') {
@@ -533,7 +517,7 @@ fn after_swap(ctx: &mut Ctx) {
             } else {
                 path
             };
-            save_png(&ctx.board.0.borrow(), &out);
+            save_png(&ctx.board.borrow(), &out);
         }
         Some(_) => {}
     }
@@ -587,7 +571,7 @@ pub extern "C" fn grGlideInit() {
             board.set_profile(model_profile());
             board.set_method(draw_method());
             board.set_threads(render_threads());
-            let board = SharedBoard(Rc::new(RefCell::new(board)));
+            let board = Rc::new(RefCell::new(board));
             let recording = Recording::from_env(&board, cfg);
             let bus = match &recording {
                 Some(r) => Bus::Recorded(r.recorder.clone()),

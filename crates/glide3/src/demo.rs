@@ -333,6 +333,35 @@ fn light_st(x: f32, z: f32) -> [f32; 2] {
     ]
 }
 
+/// Draws the demo's frame on the board behind `bus` (of [`TMUS`] TMUs, the rest as
+/// [`crate::BoardInfo`]'s defaults say) and swaps it to the front: `grGlideInit`,
+/// `grSstWinOpen` at [`WIDTH`]x[`HEIGHT`], [`draw`], `grBufferSwap(1)`,
+/// `grGlideShutdown`. A Glide error (there should be none) is returned as text.
+pub fn render(bus: Box<dyn crate::RegisterBus>, info: crate::BoardInfo) -> Result<(), String> {
+    let mut g = Glide::init(bus, info);
+    g.sst_select(0);
+    if !g.win_open(
+        GR_RESOLUTION_640x480,
+        GR_REFRESH_60Hz,
+        GR_COLORFORMAT_ARGB,
+        GR_ORIGIN_UPPER_LEFT,
+        2,
+        1,
+    ) {
+        return Err(format!(
+            "the demo cannot open Glide at 640x480: {}",
+            g.last_error().unwrap_or("grSstWinOpen failed")
+        ));
+    }
+    draw(&mut g);
+    g.buffer_swap(1);
+    if let Some(e) = g.last_error() {
+        return Err(format!("the demo scene made a Glide error: {e}"));
+    }
+    drop(g.shutdown());
+    Ok(())
+}
+
 /// Draws the scene on `g`, a context open at 640x480 on a board with two TMUs, into
 /// the back buffer (the caller swaps). Sets the vertex layout and every state it uses.
 pub fn draw(g: &mut Glide) {

@@ -5,28 +5,12 @@
 //! `VOODOO_BLESS=1 cargo test --release -p glide3 --test demo_scene` rewrites the golden
 //! after an intended change to the scene or the board.
 
-use glide::consts::*;
-use glide::{BoardInfo, Glide, RegisterBus};
+use glide::BoardInfo;
 use sst1_board::{Board, BoardConfig, BufferKind};
 use std::cell::RefCell;
 use std::io::{Read, Write};
 use std::path::PathBuf;
 use std::rc::Rc;
-
-#[derive(Clone)]
-struct Shared(Rc<RefCell<Board>>);
-
-impl RegisterBus for Shared {
-    fn write32(&mut self, addr: u32, value: u32) {
-        self.0.borrow_mut().write32(addr, value);
-    }
-    fn read32(&mut self, addr: u32) -> u32 {
-        self.0.borrow_mut().read32(addr)
-    }
-    fn pci_write(&mut self, offset: u32, value: u32) {
-        self.0.borrow_mut().pci_write(offset, value);
-    }
-}
 
 /// The front buffer after drawing the demo and swapping, on the generic path or not.
 fn front(generic: bool) -> Vec<u16> {
@@ -36,23 +20,10 @@ fn front(generic: bool) -> Vec<u16> {
     };
     let mut board = Board::new(config);
     board.set_generic_path(generic);
-    let shared = Shared(Rc::new(RefCell::new(board)));
+    let shared = Rc::new(RefCell::new(board));
     let info = BoardInfo::new(config.fbi_mb, config.tmus, config.tmu_mb);
-    let mut g = Glide::init(Box::new(shared.clone()), info);
-    g.set_error_callback(Box::new(|msg, _| panic!("Glide error: {msg}")));
-    g.sst_select(0);
-    assert!(g.win_open(
-        GR_RESOLUTION_640x480,
-        GR_REFRESH_60Hz,
-        GR_COLORFORMAT_ARGB,
-        GR_ORIGIN_UPPER_LEFT,
-        2,
-        1
-    ));
-    glide::demo::draw(&mut g);
-    g.buffer_swap(1);
-    drop(g.shutdown());
-    let board = shared.0.borrow();
+    glide::demo::render(Box::new(shared.clone()), info).expect("the demo draws");
+    let board = shared.borrow();
     assert_eq!(
         board.display_size(),
         (glide::demo::WIDTH, glide::demo::HEIGHT)

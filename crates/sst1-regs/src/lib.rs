@@ -41,3 +41,21 @@ pub trait RegisterBus {
         let _ = cycles;
     }
 }
+
+/// A bus shared by several owners, such as a Glide context that writes the board and the
+/// caller that reads its picture back: each call borrows it for its own duration (and
+/// panics, as `RefCell` does, if it is already borrowed).
+impl<B: RegisterBus + ?Sized> RegisterBus for std::rc::Rc<std::cell::RefCell<B>> {
+    fn write32(&mut self, addr: u32, value: u32) {
+        self.borrow_mut().write32(addr, value);
+    }
+    fn read32(&mut self, addr: u32) -> u32 {
+        self.borrow_mut().read32(addr)
+    }
+    fn pci_write(&mut self, offset: u32, value: u32) {
+        self.borrow_mut().pci_write(offset, value);
+    }
+    fn host_wait(&mut self, cycles: u64) {
+        self.borrow_mut().host_wait(cycles);
+    }
+}

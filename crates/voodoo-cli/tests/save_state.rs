@@ -1,16 +1,11 @@
 //! `voodoo replay --save-at OP FILE` and `--resume FILE`: a replay resumed from a state
 //! writes the dumps and the counters of the replay that was never interrupted.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
+use support::{scratch, voodoo};
 
-fn voodoo(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_voodoo"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
-}
+use std::path::Path;
+use std::process::Output;
 
 fn ok(output: Output) -> String {
     assert!(
@@ -24,13 +19,6 @@ fn ok(output: Output) -> String {
 fn refused(output: Output) -> String {
     assert!(!output.status.success());
     String::from_utf8(output.stderr).unwrap()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("voodoo-state-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 fn trace(name: &str) -> String {

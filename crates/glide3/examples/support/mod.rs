@@ -2,7 +2,7 @@
 //! `sst1_trace::Recorder`, one frame, and the trace written to `traces/examples/`.
 
 use glide::consts::*;
-use glide::{BoardInfo, Glide, RegisterBus};
+use glide::{BoardInfo, Glide};
 use sst1_board::{Board, BoardConfig};
 use sst1_trace::{write_text, DumpBuffer, Recorder, Trace};
 use std::cell::RefCell;
@@ -10,30 +10,12 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::rc::Rc;
 
-/// The recorder, shared between Glide (which writes through it) and the scene driver.
-#[derive(Clone)]
-struct Shared(Rc<RefCell<Recorder<Board>>>);
-
-impl RegisterBus for Shared {
-    fn write32(&mut self, addr: u32, value: u32) {
-        self.0.borrow_mut().write32(addr, value);
-    }
-    fn read32(&mut self, addr: u32) -> u32 {
-        self.0.borrow_mut().read32(addr)
-    }
-    fn pci_write(&mut self, offset: u32, value: u32) {
-        self.0.borrow_mut().pci_write(offset, value);
-    }
-}
-
 /// Runs `draw` for one frame on a board configured as `config` and returns the trace:
 /// `grGlideInit`, `grSstWinOpen(640x480)`, the scene, `grBufferSwap(1)`, then a dump of
 /// the front buffer named `NAME_swap1_front.raw`. Panics if Glide reports an error.
 pub fn record(name: &str, config: BoardConfig, draw: fn(&mut Glide)) -> Trace {
-    let rec = Shared(Rc::new(RefCell::new(Recorder::new(
-        Board::new(config),
-        config,
-    ))));
+    // The recorder, shared between Glide (which writes through it) and this driver.
+    let rec = Rc::new(RefCell::new(Recorder::new(Board::new(config), config)));
     let info = BoardInfo::new(config.fbi_mb, config.tmus, config.tmu_mb);
     let mut g = Glide::init(Box::new(rec.clone()), info);
     g.set_error_callback(Box::new(|msg, _| panic!("Glide error: {msg}")));
@@ -48,11 +30,10 @@ pub fn record(name: &str, config: BoardConfig, draw: fn(&mut Glide)) -> Trace {
     ));
     draw(&mut g);
     g.buffer_swap(1);
-    rec.0
-        .borrow_mut()
+    rec.borrow_mut()
         .dump(DumpBuffer::Front, &format!("{name}_swap1_front.raw"));
     drop(g.shutdown());
-    let trace = rec.0.borrow().trace().clone();
+    let trace = rec.borrow().trace().clone();
     trace
 }
 
