@@ -80,7 +80,7 @@ fn best_of(trace: &Trace, path: RunPath, iters: u32) -> (Timing, Stats) {
     let mut best: Option<(Timing, Stats)> = None;
     for _ in 0..iters {
         let (t, s) = run_once(trace, path);
-        let better = best.map_or(true, |(b, _)| t.key() < b.key());
+        let better = best.is_none_or(|(b, _)| t.key() < b.key());
         if better {
             best = Some((t, s));
         }

@@ -49,7 +49,7 @@ fn scene(seed: u64, tmus: u32) -> Trace {
         triangles_per_state: 2,
         dump_every: 50,
         // A random frame-buffer layout in every third scene.
-        layout: seed % 3 == 0,
+        layout: seed.is_multiple_of(3),
     });
     read_trace(&format!("random_states seed {seed}"), text.as_bytes())
         .unwrap_or_else(|e| panic!("{e}"))

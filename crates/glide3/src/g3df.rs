@@ -397,7 +397,7 @@ mod tests {
             Error3df::AspectRatio
         );
         let mut long = b"3df v1.1\nrgb565\nlod range: 1 256\naspect ratio: 1 1".to_vec();
-        long.extend(std::iter::repeat(b' ').take(60));
+        long.extend(std::iter::repeat_n(b' ', 60));
         long.push(b'\n');
         assert_eq!(bad(&long), Error3df::Header);
     }

@@ -957,7 +957,7 @@ impl Glide {
         stride: usize,
     ) {
         if self.check(
-            stride % 4 != 0,
+            !stride.is_multiple_of(4),
             "grDrawVertexArrayContiguous",
             "stride must be a positive multiple of 4",
         ) {

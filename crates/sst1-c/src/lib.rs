@@ -297,7 +297,7 @@ fn check_aperture(offset: u32, size: u32) -> Result<()> {
     if offset >= APERTURE_SIZE {
         return Err(Error::BadOffset);
     }
-    if offset % size != 0 {
+    if !offset.is_multiple_of(size) {
         return Err(Error::Misaligned);
     }
     Ok(())
@@ -675,7 +675,7 @@ pub unsafe extern "C" fn sst1_pci_write(board: *mut Sst1Board, offset: u32, valu
         if offset >= PCI_CONFIG_SIZE {
             return Err(Error::BadOffset);
         }
-        if offset % 4 != 0 {
+        if !offset.is_multiple_of(4) {
             return Err(Error::Misaligned);
         }
         b.lock().board.pci_write(offset, value);

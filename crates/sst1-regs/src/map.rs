@@ -304,7 +304,7 @@ static BY_INDEX: [u8; 256] = {
     let mut i = 0;
     while i < TABLE.len() {
         let d = &TABLE[i];
-        assert!(d.offset < 0x400 && d.offset % 4 == 0);
+        assert!(d.offset < 0x400 && d.offset.is_multiple_of(4));
         assert!(
             i == 0 || TABLE[i - 1].offset < d.offset,
             "not in spec order"

@@ -221,7 +221,7 @@ pub(crate) const DUMP_NAME_RULE: &str =
 
 /// Checks an aperture offset: below [`APERTURE_SIZE`] and 4-aligned.
 pub fn check_addr(addr: u32) -> Result<(), &'static str> {
-    if addr < APERTURE_SIZE && addr % 4 == 0 {
+    if addr < APERTURE_SIZE && addr.is_multiple_of(4) {
         Ok(())
     } else {
         Err(ADDR_RULE)
@@ -230,7 +230,7 @@ pub fn check_addr(addr: u32) -> Result<(), &'static str> {
 
 /// Checks a configuration-space offset: below [`PCI_CONFIG_SIZE`] and 4-aligned.
 pub fn check_pci_offset(offset: u32) -> Result<(), &'static str> {
-    if offset < PCI_CONFIG_SIZE && offset % 4 == 0 {
+    if offset < PCI_CONFIG_SIZE && offset.is_multiple_of(4) {
         Ok(())
     } else {
         Err(PCI_RULE)
@@ -341,7 +341,7 @@ impl<R> Capped<R> {
 
 /// The error of a [`Capped`] reader past its limit.
 fn too_large(limit: u64) -> std::io::Error {
-    let size = if limit % (1 << 30) == 0 {
+    let size = if limit.is_multiple_of(1 << 30) {
         format!("{} GiB", limit >> 30)
     } else {
         format!("{limit} bytes")

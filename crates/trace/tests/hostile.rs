@@ -275,7 +275,7 @@ impl Read for Generated {
             while self.pending.len() < 4096 && self.line < self.lines {
                 self.line += 1;
                 match self.dump_every {
-                    Some(n) if self.line % n == 0 => {
+                    Some(n) if self.line.is_multiple_of(n) => {
                         self.pending.extend_from_slice(b"dump front d.raw\n")
                     }
                     _ => self.pending.extend_from_slice(b"r 0\n"),

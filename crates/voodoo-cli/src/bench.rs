@@ -157,7 +157,7 @@ fn best_of(trace: &Trace, run: Run, iters: u32) -> (Timing, Stats) {
     let mut best: Option<(Timing, Stats)> = None;
     for _ in 0..iters.max(1) {
         let (t, s) = run_once(trace, run);
-        if best.map_or(true, |(b, _)| t.key() < b.key()) {
+        if best.is_none_or(|(b, _)| t.key() < b.key()) {
             best = Some((t, s));
         }
     }
@@ -341,7 +341,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
                 }
                 for (slot, &m) in best.iter_mut().zip(&methods) {
                     let (t, s) = run_once(&scene.trace, Run::Approx(m));
-                    if slot.map_or(true, |(b, _)| t.key() < b.key()) {
+                    if slot.is_none_or(|(b, _)| t.key() < b.key()) {
                         *slot = Some((t, s));
                     }
                 }
@@ -370,7 +370,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
             .as_ref()
             .map(|t| fast.timing.wall.as_secs_f64() / t.secs());
         let same = fast.stats == reference.stats
-            && threaded.as_ref().map_or(true, |t| t.stats == fast.stats);
+            && threaded.as_ref().is_none_or(|t| t.stats == fast.stats);
         all_match &= same;
         let hz = clock.map(|(hz, _)| hz);
         if o.json {

@@ -160,7 +160,7 @@ pub fn run(config: &Config) -> Report {
             config
                 .targets
                 .as_ref()
-                .map_or(true, |names| names.iter().any(|n| n == t.name))
+                .is_none_or(|names| names.iter().any(|n| n == t.name))
         })
         .map(|target| {
             let mut seeds = (target.seeds)(&repo);
@@ -190,7 +190,7 @@ pub fn run(config: &Config) -> Report {
             for _ in 0..lane.target.weight.max(1) {
                 let done = match config.budget {
                     Budget::Cases(n) => case >= n,
-                    Budget::Time(limit) => case % 64 == 0 && start.elapsed() >= limit,
+                    Budget::Time(limit) => case.is_multiple_of(64) && start.elapsed() >= limit,
                 };
                 if done {
                     break 'run;

@@ -208,7 +208,7 @@ fn replay(input: &[u8]) {
     );
     // The vote (three boards on three threads) for one case in eight: it must finish and
     // yield a voted dump per dump op.
-    if input.len() % 8 == 0 {
+    if input.len().is_multiple_of(8) {
         let mut voted = 0;
         let ops = trace.ops.iter().cloned().map(Ok);
         let result = execute_references_stream(
