@@ -228,8 +228,31 @@ const BOX86_LOCAL: u32 = 0x0024_1000;
 /// The combine bits of `textureMode` (`TEXTUREMODE_MASK`); all zero is a pass-through.
 const BOX86_COMBINE_MASK: u32 = 0x3fff_f000;
 
-/// [`ChainModel::Box86`]: TMU 0 and, if present, TMU 1 (a third TMU is not read).
+/// Which TMUs a pixel (or chunk) reads under [`ChainModel::Box86`]: TMU 0 and, if
+/// present, TMU 1 (a third TMU is not read).
 /// Source: 86Box `voodoo_half_triangle` (the choice between the three paths).
+enum Box86Route<'a> {
+    /// One TMU's texel, uncombined: TMU 0 on a one-TMU board or in local-only mode, or
+    /// TMU 1 where TMU 0 passes it through.
+    Alone(&'a mut Tmu),
+    /// TMU 1's output (under TMU 0's `textureMode`, the `u32`) into TMU 0's combine unit.
+    Combined(&'a mut Tmu, &'a mut Tmu, u32),
+}
+
+impl<'a> Box86Route<'a> {
+    #[inline(always)]
+    fn of(t0: &'a mut Tmu, t1: Option<&'a mut Tmu>) -> Self {
+        let mode = t0.texture_mode();
+        match t1 {
+            None => Self::Alone(t0),
+            Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => Self::Alone(t0),
+            Some(t1) if mode & BOX86_COMBINE_MASK == 0 => Self::Alone(t1),
+            Some(t1) => Self::Combined(t0, t1, mode),
+        }
+    }
+}
+
+/// [`ChainModel::Box86`]'s texel for one pixel ([`Box86Route`]).
 fn box86_texel<M: TexelModel>(
     t0: &mut Tmu,
     t1: Option<&mut Tmu>,
@@ -238,12 +261,9 @@ fn box86_texel<M: TexelModel>(
     x: i32,
     y: i32,
 ) -> Rgba {
-    let mode = t0.texture_mode();
-    match t1 {
-        None => t0.texel_uncombined::<M>(dx, dy, x, y),
-        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => t0.texel_uncombined::<M>(dx, dy, x, y),
-        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => t1.texel_uncombined::<M>(dx, dy, x, y),
-        Some(t1) => {
+    match Box86Route::of(t0, t1) {
+        Box86Route::Alone(t) => t.texel_uncombined::<M>(dx, dy, x, y),
+        Box86Route::Combined(t0, t1, mode) => {
             let other = t1.texel_box86_upstream::<M>(dx, dy, x, y, mode);
             t0.texel::<M>(dx, dy, x, y, other)
         }
@@ -257,25 +277,16 @@ fn box86_texel_stages<M: TexelModel>(
     (dx, dy, x, y): (i32, i32, i32, i32),
     stages: &mut Vec<TmuStage>,
 ) -> Rgba {
-    let mode = t0.texture_mode();
     let mut one = |t: &mut Tmu, p: TmuPixel| {
         stages.push(stage(t, &p));
         p.output
     };
-    match t1 {
-        None => {
-            let p = t0.texel_uncombined_traced::<M>(dx, dy, x, y);
-            one(t0, p)
+    match Box86Route::of(t0, t1) {
+        Box86Route::Alone(t) => {
+            let p = t.texel_uncombined_traced::<M>(dx, dy, x, y);
+            one(t, p)
         }
-        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => {
-            let p = t0.texel_uncombined_traced::<M>(dx, dy, x, y);
-            one(t0, p)
-        }
-        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => {
-            let p = t1.texel_uncombined_traced::<M>(dx, dy, x, y);
-            one(t1, p)
-        }
-        Some(t1) => {
+        Box86Route::Combined(t0, t1, mode) => {
             let p = t1.texel_box86_upstream_traced::<M>(dx, dy, x, y, mode);
             let other = one(t1, p);
             let p = t0.texel_traced::<M>(dx, dy, x, y, other);
@@ -308,16 +319,9 @@ fn box86_texels<M: TexelModel>(
     n: usize,
     out: &mut ColourLanes,
 ) {
-    let mode = t0.texture_mode();
-    match t1 {
-        None => t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out),
-        Some(_) if mode & BOX86_LOCAL_MASK == BOX86_LOCAL => {
-            t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out)
-        }
-        Some(t1) if mode & BOX86_COMBINE_MASK == 0 => {
-            t1.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out)
-        }
-        Some(t1) => {
+    match Box86Route::of(t0, t1) {
+        Box86Route::Alone(t) => t.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out),
+        Box86Route::Combined(t0, t1, mode) => {
             let upstream = LaneOutput::Box86Upstream(mode);
             let other = t1.texels_kept::<M>(dx0, dy, x0, y, alive, n, upstream);
             t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other), out);
