@@ -71,6 +71,9 @@ pub struct PathCounts {
     /// Pixel by pixel because colour and aux words of different lanes alias (a buffer
     /// layout no driver sets; [`crate::span`]).
     pub aliased_layout: u64,
+    /// Pixel by pixel on the fast path because their row is so short that a chunk would
+    /// cost more (`SHORT_ROW` in raster.rs): the same stages, one pixel at a time.
+    pub short_rows: u64,
     /// Pixel by pixel because the reference path was forced ([`Fbi::set_generic_path`]).
     pub reference: u64,
 }
@@ -81,6 +84,7 @@ impl PathCounts {
         self.span_kernels += other.span_kernels;
         self.in_bands += other.in_bands;
         self.aliased_layout += other.aliased_layout;
+        self.short_rows += other.short_rows;
         self.reference += other.reference;
     }
 }

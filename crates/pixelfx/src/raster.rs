@@ -253,7 +253,7 @@ impl Fbi {
         if let Some(c) = copy {
             c.step_row(start, stop, params.right_to_left);
         }
-        if let Some(consts) = consts {
+        if let Some(consts) = consts.filter(|_| stop - start > SHORT_ROW) {
             let mut x0 = start;
             while x0 < stop {
                 let n = chunk_len((stop - x0) as usize);
@@ -306,7 +306,11 @@ impl Fbi {
             }
             return;
         }
-        self.path_counts.reference += (stop - start) as u64;
+        if consts.is_some() {
+            self.path_counts.short_rows += (stop - start) as u64;
+        } else {
+            self.path_counts.reference += (stop - start) as u64;
+        }
         let watched = self.watched_column(scry);
         let mut it = Iterated::at(&params, start - ax, dy);
         for x in start..stop {
@@ -529,3 +533,8 @@ fn shade_band_rows<M: PixelModel, T: TexelSource>(
         }
     }
 }
+
+/// Rows of at most this many pixels are shaded pixel by pixel even on the fast path:
+/// a chunk's fixed cost (its lanes, its words, its stage loops) is more than that of
+/// shading so few pixels one at a time. Both compute the same integers.
+const SHORT_ROW: i32 = 2;

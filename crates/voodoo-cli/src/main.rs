@@ -787,6 +787,7 @@ impl Stats {
                 "span_kernels": self.2.span_kernels,
                 "in_bands": self.2.in_bands,
                 "aliased_layout": self.2.aliased_layout,
+                "short_rows": self.2.short_rows,
                 "reference": self.2.reference,
             },
         })
@@ -907,10 +908,11 @@ fn replay(
             println!("swaps        {}", c.swaps);
             let paths = board.path_counts();
             println!(
-                "shaded by    span kernels {} ({} on render threads), pixel by pixel {} (aliased buffers {}, reference path {})",
+                "shaded by    span kernels {} ({} on render threads), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {})",
                 paths.span_kernels,
                 paths.in_bands,
-                paths.aliased_layout + paths.reference,
+                paths.short_rows + paths.aliased_layout + paths.reference,
+                paths.short_rows,
                 paths.aliased_layout,
                 paths.reference
             );
