@@ -289,7 +289,7 @@ fn check_timing(t: &TimingState, memory_fifo: MemoryFifo) -> Result<(), StateErr
     const TIME_MAX: u64 = 1 << 61;
     let times_ok = [h.now, h.engine_free, h.tmu_free, h.last_taken, h.last_swap]
         .into_iter()
-        .chain(h.fifo.iter().copied())
+        .chain(h.fifo.times())
         .chain(h.swaps.iter().copied())
         .all(|v| v <= TIME_MAX);
     let queued_max = PCI_FIFO_ENTRIES + memory_fifo.entries;

@@ -169,7 +169,7 @@ pub(crate) struct HostView {
     pub(crate) tmu_free: u64,
     /// When each write still queued is taken, oldest first: at most 64 in the PCI FIFO,
     /// and as many as the memory FIFO holds in front of them.
-    pub(crate) fifo: VecDeque<u64>,
+    pub(crate) fifo: TakeTimes,
     /// How many of the oldest queued writes are in the memory FIFO.
     pub(crate) in_memory: usize,
     /// The memory FIFO's size and low water mark (size 0: disabled).
@@ -180,6 +180,130 @@ pub(crate) struct HostView {
     pub(crate) last_taken: u64,
     /// When the last synchronised swap happened.
     pub(crate) last_swap: u64,
+}
+
+/// The times at which queued writes are taken, oldest first, held as runs of equal
+/// times: behind a busy engine every write queued is taken at the same time (when the
+/// command before it ends), so a FIFO of 64 writes is mostly one run, and queueing or
+/// draining a write is a counter step rather than a queue operation. A save state holds
+/// the times one per write, as a plain list.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(from = "Vec<u64>", into = "Vec<u64>")]
+pub(crate) struct TakeTimes {
+    /// `(time, writes)`, oldest first; no run is empty and no two neighbours share a
+    /// time, so equal queues have equal runs.
+    runs: VecDeque<(u64, usize)>,
+    /// Writes in all the runs.
+    len: usize,
+}
+
+impl TakeTimes {
+    /// Writes queued.
+    #[inline]
+    pub(crate) fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether no write is queued.
+    #[inline]
+    pub(crate) fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// When the oldest queued write is taken.
+    #[inline]
+    pub(crate) fn oldest(&self) -> Option<u64> {
+        self.runs.front().map(|&(time, _)| time)
+    }
+
+    /// When the newest queued write is taken.
+    #[inline]
+    pub(crate) fn newest(&self) -> Option<u64> {
+        self.runs.back().map(|&(time, _)| time)
+    }
+
+    /// Queues a write taken at `time`.
+    #[inline]
+    fn push_back(&mut self, time: u64) {
+        match self.runs.back_mut() {
+            Some((t, n)) if *t == time => *n += 1,
+            _ => self.runs.push_back((time, 1)),
+        }
+        self.len += 1;
+    }
+
+    /// Dequeues the oldest write and returns its time.
+    #[inline]
+    fn pop_front(&mut self) -> Option<u64> {
+        let (time, n) = self.runs.front_mut()?;
+        let time = *time;
+        *n -= 1;
+        if *n == 0 {
+            self.runs.pop_front();
+        }
+        self.len -= 1;
+        Some(time)
+    }
+
+    /// Dequeues every write taken by `now` (from the oldest, up to the first taken
+    /// later) and returns how many.
+    #[inline]
+    fn pop_taken(&mut self, now: u64) -> usize {
+        let mut taken = 0;
+        while let Some(&(time, n)) = self.runs.front() {
+            if time > now {
+                break;
+            }
+            self.runs.pop_front();
+            taken += n;
+        }
+        self.len -= taken;
+        taken
+    }
+
+    /// Empties the queue.
+    #[inline]
+    fn clear(&mut self) {
+        self.runs.clear();
+        self.len = 0;
+    }
+
+    /// Moves every time back by `shift` (saturating at 0), merging runs that meet.
+    fn shift_back(&mut self, shift: u64) {
+        let times: Vec<u64> = std::mem::take(self).into();
+        *self = times.into_iter().map(|t| t.saturating_sub(shift)).collect();
+    }
+
+    /// The distinct times queued, oldest first.
+    pub(crate) fn times(&self) -> impl Iterator<Item = u64> + '_ {
+        self.runs.iter().map(|&(time, _)| time)
+    }
+}
+
+impl FromIterator<u64> for TakeTimes {
+    fn from_iter<I: IntoIterator<Item = u64>>(times: I) -> Self {
+        let mut queue = TakeTimes::default();
+        for time in times {
+            queue.push_back(time);
+        }
+        queue
+    }
+}
+
+impl From<Vec<u64>> for TakeTimes {
+    fn from(times: Vec<u64>) -> Self {
+        times.into_iter().collect()
+    }
+}
+
+impl From<TakeTimes> for Vec<u64> {
+    fn from(queue: TakeTimes) -> Self {
+        queue
+            .runs
+            .into_iter()
+            .flat_map(|(time, n)| std::iter::repeat_n(time, n))
+            .collect()
+    }
 }
 
 /// The memory FIFO (spec 3, 5.42, 5.46): off-screen frame-buffer rows that queue the
@@ -229,10 +353,8 @@ impl HostView {
     /// Drops what the engine has taken by now (the oldest first: those in memory).
     #[inline]
     fn settle(&mut self) {
-        while self.fifo.front().is_some_and(|&t| t <= self.now) {
-            self.fifo.pop_front();
-            self.in_memory = self.in_memory.saturating_sub(1);
-        }
+        let taken = self.fifo.pop_taken(self.now);
+        self.in_memory = self.in_memory.saturating_sub(taken);
         while self.swaps.front().is_some_and(|&t| t <= self.now) {
             self.swaps.pop_front();
         }
@@ -275,11 +397,31 @@ impl HostView {
             self.last_taken = self.now;
             return;
         }
+        if self.joins_newest() {
+            self.fifo.push_back(self.engine_free);
+            self.last_taken = self.engine_free;
+            return;
+        }
         self.write_queued();
     }
 
-    /// [`HostView::write`] without its idle-engine shortcut (for the test that the
-    /// shortcut changes nothing).
+    /// Whether a write now, with the engine busy, only joins the newest queued writes,
+    /// all taken when the engine is free: nothing queued has been taken by now, no swap
+    /// is pending, and the write leaves the PCI FIFO with room and above the memory
+    /// FIFO's low water mark. Then the general path ([`HostView::write_queued`]) finds
+    /// nothing to settle, spill or wait for, and only counts the write in.
+    #[inline]
+    fn joins_newest(&self) -> bool {
+        let free_after = PCI_FIFO_ENTRIES.saturating_sub(self.in_pci() + 1);
+        self.fifo.newest() == Some(self.engine_free)
+            && self.fifo.oldest().is_some_and(|t| t > self.now)
+            && self.swaps.is_empty()
+            && free_after > 0
+            && (self.memory_fifo.entries == 0 || free_after > self.memory_fifo.low_water_mark)
+    }
+
+    /// [`HostView::write`] without its shortcuts (for the test that they change
+    /// nothing).
     #[cfg(test)]
     fn write_general(&mut self) {
         self.now += PCI_CLOCKS_PER_WRITE;
@@ -339,7 +481,7 @@ impl HostView {
             back(&mut self.tmu_free);
             back(&mut self.last_taken);
             back(&mut self.last_swap);
-            self.fifo.iter_mut().for_each(back);
+            self.fifo.shift_back(shift);
             self.swaps.iter_mut().for_each(back);
         }
     }
@@ -711,10 +853,60 @@ mod tests {
     }
 
     #[test]
-    fn the_idle_engine_shortcut_changes_no_read() {
+    fn take_times_hold_the_queue_a_list_of_times_would() {
+        // Pseudo-random pushes (often of the last time, as behind a busy engine), pops,
+        // drains up to a time, shifts and clears on the runs and on a plain list: the
+        // same times come out, and the runs round-trip through the list form.
+        let mut runs = TakeTimes::default();
+        let mut list: VecDeque<u64> = VecDeque::new();
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut time = 0u64;
+        for step in 0..100_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            match seed % 16 {
+                0..=8 => {
+                    time += (seed >> 8) % 3 * ((seed >> 16) % 50);
+                    runs.push_back(time);
+                    list.push_back(time);
+                }
+                9..=11 => assert_eq!(runs.pop_front(), list.pop_front(), "step {step}"),
+                12..=13 => {
+                    let now = time.saturating_sub((seed >> 20) % 200);
+                    let mut n = 0;
+                    while list.front().is_some_and(|&t| t <= now) {
+                        list.pop_front();
+                        n += 1;
+                    }
+                    assert_eq!(runs.pop_taken(now), n, "step {step}");
+                }
+                14 => {
+                    let shift = (seed >> 24) % 300;
+                    runs.shift_back(shift);
+                    list.iter_mut().for_each(|t| *t = t.saturating_sub(shift));
+                    time = time.saturating_sub(shift);
+                }
+                _ if seed >> 40 & 0xff == 0 => {
+                    runs.clear();
+                    list.clear();
+                }
+                _ => {}
+            }
+            assert_eq!(runs.len(), list.len(), "step {step}");
+            assert_eq!(runs.is_empty(), list.is_empty());
+        }
+        let expanded: Vec<u64> = runs.clone().into();
+        assert_eq!(expanded, Vec::from(list));
+        assert_eq!(TakeTimes::from(expanded), runs);
+    }
+
+    #[test]
+    fn the_write_shortcuts_change_no_read() {
         // The same pseudo-random accesses (writes, triangles, fills, swaps, reads and
         // waits, with and without a memory FIFO) on two models, one of which always takes
-        // the general path for writes: every status read agrees.
+        // the general path for writes: the same state once settled, every status read
+        // the same, and both shortcuts taken many times.
         for memory in [0, 100] {
             let mut a = Timing::default();
             let mut b = Timing::default();
@@ -725,6 +917,7 @@ mod tests {
                 });
             }
             let mut seed = 0x1234_5678_9abc_def0u64;
+            let (mut idle, mut joined) = (0u32, 0u32);
             for step in 0..200_000 {
                 seed ^= seed << 13;
                 seed ^= seed >> 7;
@@ -738,6 +931,9 @@ mod tests {
                         if general {
                             t.host.write_general();
                         } else {
+                            let h = &t.host;
+                            idle += u32::from(h.engine_free <= h.now + PCI_CLOCKS_PER_WRITE);
+                            joined += u32::from(h.joins_newest());
                             t.host.write();
                         }
                     }
@@ -755,10 +951,17 @@ mod tests {
                         _ => t.read(),
                     }
                 }
+                a.host.settle();
+                b.host.settle();
+                assert_eq!(a.host, b.host, "step {step}");
                 assert_eq!(a.status(0), b.status(0), "step {step}");
                 assert_eq!(a.v_retrace(), b.v_retrace());
             }
             assert_eq!(a.cycles(), b.cycles());
+            assert!(
+                idle > 5_000 && joined > 5_000,
+                "{idle} idle, {joined} joined"
+            );
         }
     }
 

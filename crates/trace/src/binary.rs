@@ -519,26 +519,36 @@ impl<R: std::io::Read> Iterator for BinaryReader<R> {
 
     #[inline]
     fn next(&mut self) -> Option<Self::Item> {
-        // Most records are writes: one whose bytes are all in the buffer is decoded here,
-        // small enough to inline into the replay loop; the rest (and every error) take
-        // `record`.
-        if !self.done && !self.frame_due {
-            if let Some((addr, value)) = self.input.peek_write() {
-                if check_addr(addr).is_ok() {
-                    self.input.at += WRITE_RECORD_LEN;
-                    self.pos += WRITE_RECORD_LEN as u64;
-                    self.accessed = true;
-                    self.frame_due = crate::replay::is_swap(addr);
-                    self.ops += 1;
-                    return Some(Ok(TraceOp::Write { addr, value }));
-                }
-            }
+        // Most records are writes: one whose bytes are all in the buffer is decoded by
+        // `next_write`, small enough to inline into the replay loop; the rest (and every
+        // error) take `record`.
+        if let Some((addr, value)) = self.next_write() {
+            return Some(Ok(TraceOp::Write { addr, value }));
         }
         self.next_record()
     }
 }
 
 impl<R: std::io::Read> BinaryReader<R> {
+    /// The next op if it is a write whose record is all in the buffer and whose address
+    /// is valid: its address and value, consumed, as [`Iterator::next`] would yield it.
+    /// `None`, with nothing consumed, for anything else (another record, a record that
+    /// crosses the buffer's end, an error, the end, a frame record due): `next` reads it.
+    #[inline(always)]
+    pub fn next_write(&mut self) -> Option<(u32, u32)> {
+        if self.done || self.frame_due {
+            return None;
+        }
+        let (addr, value) = self.input.peek_write()?;
+        check_addr(addr).ok()?;
+        self.input.at += WRITE_RECORD_LEN;
+        self.pos += WRITE_RECORD_LEN as u64;
+        self.accessed = true;
+        self.frame_due = crate::replay::is_swap(addr);
+        self.ops += 1;
+        Some((addr, value))
+    }
+
     /// [`Iterator::next`] through [`BinaryReader::record`].
     #[inline(never)]
     fn next_record(&mut self) -> Option<Result<TraceOp, BinaryError>> {

@@ -47,9 +47,9 @@ pub use output::{write_file_replacing, DumpDir, OutputError};
 pub use read::{open_trace, stream_trace, TraceReader, TraceStream, MAX_PREFIX_OPS};
 pub use recorder::{recorded_addr, recorded_pci_offset, OpLog, Recorder, PCI_UNDECODED};
 pub use replay::{
-    execute, execute_references, execute_references_stream, execute_stream, replay, rgb565_to_rgb8,
-    vote_buffer, write_dumps, Dump, OpCounts, ReferenceDump, ReferenceReplay, ReplayError,
-    PROGRESS_STEP,
+    execute, execute_references, execute_references_stream, execute_stream, execute_trace_stream,
+    replay, rgb565_to_rgb8, vote_buffer, write_dumps, Dump, OpCounts, ReferenceDump,
+    ReferenceReplay, ReplayError, PROGRESS_STEP,
 };
 pub use text::{parse_text, write_text, ParseError, TextReader};
 pub use writer::TraceWriter;

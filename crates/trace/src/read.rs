@@ -120,6 +120,17 @@ impl<'a> TraceReader<'a> {
     pub fn is_binary(&self) -> bool {
         matches!(self.form, Form::Binary(_))
     }
+
+    /// The next op if it is a write that the binary form can hand out at once, as
+    /// [`BinaryReader::next_write`]; `None`, with nothing consumed, otherwise (and always
+    /// for the text form).
+    #[inline(always)]
+    pub fn next_write(&mut self) -> Option<(u32, u32)> {
+        match &mut self.form {
+            Form::Binary(reader) if !self.done => reader.next_write(),
+            _ => None,
+        }
+    }
 }
 
 /// A binary-form error as a [`LoadError`]: a read error inside a gzip stream is a
@@ -183,6 +194,19 @@ impl TraceStream<'_> {
     /// The name the stream gives its input in error messages.
     pub fn file(&self) -> &str {
         self.rest.file()
+    }
+
+    /// The next op if it is a write that can be handed out without building a
+    /// [`TraceOp`] ([`TraceReader::next_write`]): its address and value, consumed, as
+    /// [`Iterator::next`] would yield it. `None`, with nothing consumed, otherwise:
+    /// `next` gives the next op.
+    #[inline(always)]
+    pub fn next_write(&mut self) -> Option<(u32, u32)> {
+        if self.ahead.is_empty() && self.error.is_none() {
+            self.rest.next_write()
+        } else {
+            None
+        }
     }
 }
 

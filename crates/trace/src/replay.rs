@@ -256,6 +256,49 @@ pub fn execute_stream(
     Ok(done)
 }
 
+/// [`execute_stream`] for a trace file's stream: runs at most `limit` ops of `stream`
+/// (all with `None`) on `board`, handing each dump to `sink`, and returns how many ran.
+/// The same ops in the same order as `execute_stream(stream.by_ref().take(limit), ..)`,
+/// with the same progress calls; plain writes go from the reader's buffer to the board
+/// without an op built for each ([`TraceStream::next_write`]), the replay's most common
+/// step.
+pub fn execute_trace_stream(
+    stream: &mut crate::TraceStream<'_>,
+    limit: Option<usize>,
+    board: &mut Board,
+    mut progress: impl FnMut(usize),
+    mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
+) -> Result<usize, ReplayError> {
+    let limit = limit.unwrap_or(usize::MAX);
+    let mut done = 0;
+    let mut next_progress = PROGRESS_STEP;
+    while done < limit {
+        let writes_end = limit.min(next_progress);
+        while done < writes_end {
+            let Some((addr, value)) = stream.next_write() else {
+                break;
+            };
+            board.write32(addr, value);
+            done += 1;
+        }
+        if done < writes_end {
+            let Some(op) = stream.next() else {
+                break;
+            };
+            if let Some(dump) = step(board, &op?) {
+                sink(dump)?;
+            }
+            done += 1;
+        }
+        if done == next_progress {
+            progress(done);
+            next_progress = next_progress.saturating_add(PROGRESS_STEP);
+        }
+    }
+    progress(done);
+    Ok(done)
+}
+
 /// A dump of the reference vote: each reference's buffer and the vote of the three.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ReferenceDump {

@@ -26,7 +26,7 @@ use sst1_regs::map;
 use sst1_trace::judge;
 use sst1_trace::text::parse_number;
 use sst1_trace::{
-    encode_binary, execute_references_stream, execute_stream, load_trace, open_trace, quote,
+    encode_binary, execute_references_stream, execute_trace_stream, load_trace, open_trace, quote,
     read_file_bounded, rgb565_to_rgb8, vote_buffer, write_file_replacing, write_text, Dump,
     DumpDir, OpCounts, ReplayError, TraceOp, TraceStream,
 };
@@ -682,8 +682,9 @@ fn run(
                     ));
                 }
                 let ahead = usize::try_from(at - skip).unwrap_or(usize::MAX);
-                let done = execute_stream(
-                    stream.by_ref().take(ahead),
+                let done = execute_trace_stream(
+                    &mut stream,
+                    Some(ahead),
                     &mut board,
                     from(base),
                     &mut sink,
@@ -700,7 +701,7 @@ fn run(
                 println!("saved the board after op {at} to {}", file.display());
                 base = at;
             }
-            execute_stream(stream, &mut board, from(base), sink)
+            execute_trace_stream(&mut stream, None, &mut board, from(base), sink)
                 .map(|_| {
                     let front = board.dump_buffer(BufferKind::Front);
                     Replayed { board, front }
