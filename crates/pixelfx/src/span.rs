@@ -260,6 +260,31 @@ fn kill_where<const L: usize>(
     }
 }
 
+/// `fails[i] = !func.passes(source[i], dest[i])` for every lane (the depth test), the
+/// function chosen once for all lanes rather than once per lane: each arm is a plain
+/// comparison loop, which vectorises.
+#[inline(always)]
+fn compare_fails(func: DepthFunction, source: &[i32], dest: &[u16], fails: &mut [bool]) {
+    macro_rules! each {
+        ($op:tt) => {
+            for (f, (&s, &d)) in fails.iter_mut().zip(source.iter().zip(dest)) {
+                *f = !(s $op i32::from(d));
+            }
+        };
+    }
+    let n = fails.len().min(source.len()).min(dest.len());
+    match func {
+        DepthFunction::Never => fails[..n].fill(true),
+        DepthFunction::Less => each!(<),
+        DepthFunction::Equal => each!(==),
+        DepthFunction::LessEqual => each!(<=),
+        DepthFunction::Greater => each!(>),
+        DepthFunction::NotEqual => each!(!=),
+        DepthFunction::GreaterEqual => each!(>=),
+        DepthFunction::Always => fails[..n].fill(false),
+    }
+}
+
 /// `v` through an opaque identity: for a reference chosen once per chunk among several
 /// arrays, it keeps the compiler from turning that one choice into an address choice
 /// per lane, which does not vectorise (measured on the first 50 triangles of
@@ -496,12 +521,7 @@ impl Shader<'_> {
             let mut fails = [no_aux_fails; L];
             let w = aux_words;
             let ram = &mem.aux()[w.first..w.first + (w.hi - w.lo)];
-            for (f, (s, d)) in fails[w.lo..w.hi]
-                .iter_mut()
-                .zip(source[w.lo..w.hi].iter().zip(ram))
-            {
-                *f = !func.passes(*s, *d as i32);
-            }
+            compare_fails(func, &source[w.lo..w.hi], ram, &mut fails[w.lo..w.hi]);
             kill_where(self.stats, &mut alive, n, Kill::DepthFunc, |i| fails[i]);
         }
 
@@ -658,11 +678,16 @@ impl Shader<'_> {
         let out = if am.alpha_blend_enable() {
             let (dst_rgb565, _) = load_words(mem.colour(), dest_words);
             let (dst_aux, has_aux) = load_words(mem.aux(), aux_words);
-            let dither = self.dither;
-            let dither_value: [i32; L] = lanes(|i| {
-                let x = (at.x0 + i as i32) as u32;
-                dither.matrix_value(st.dither_matrix, x, at.prow as u32) as i32
-            });
+            // The matrix repeats every 4 columns: its entries for this row's first four
+            // lanes, then spread over the lanes.
+            let mut row = [0i32; 4];
+            for (k, e) in row.iter_mut().enumerate() {
+                let x = (at.x0 + k as i32) as u32;
+                *e = self
+                    .dither
+                    .matrix_value(st.dither_matrix, x, at.prow as u32) as i32;
+            }
+            let dither_value: [i32; L] = lanes(|i| row[i & 3]);
             let input = blend::BlendLanes {
                 src: &fogged.c,
                 prefog: &combined.c,
