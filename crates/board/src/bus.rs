@@ -26,6 +26,72 @@ pub const fn aperture_offset(bus_addr: u32) -> u32 {
     bus_addr & 0x00ff_fffc
 }
 
+/// What a write to a register does before and after it is stored, by register index
+/// (bits of a [`ROUTES`] entry), found at compile time from the register table
+/// ([`map::desc_const`]): one load per write rather than a search of the table and a
+/// chain of comparisons.
+struct Route;
+
+impl Route {
+    /// No register: the write is refused.
+    const RESERVED: u8 = 1;
+    /// Read-only: the write is refused.
+    const READ_ONLY: u8 = 2;
+    /// `fbiInit0`-`fbiInit4`: refused unless PCI `initEnable` bit 0 is set (spec 6).
+    const INIT: u8 = 4;
+    /// Any of the three above: the write may be refused.
+    const CHECKED: u8 = Self::RESERVED | Self::READ_ONLY | Self::INIT;
+    /// The TMUs store it.
+    const TREX: u8 = 8;
+    /// The FBI stores it.
+    const FBI: u8 = 16;
+    /// It changes what the timing model follows: the video timing, the DAC, or the
+    /// memory FIFO.
+    const TIMING: u8 = 32;
+
+    const fn of(offset: u32) -> u8 {
+        let Some(desc) = map::desc_const(offset) else {
+            return Self::RESERVED;
+        };
+        let mut route = 0;
+        if !desc.access.contains(map::Access::WRITE) {
+            route |= Self::READ_ONLY;
+        }
+        if matches!(offset, addr::FBI_INIT0..=addr::FBI_INIT3 | addr::FBI_INIT4) {
+            route |= Self::INIT;
+        }
+        if desc.chips.contains(map::Chips::TREX) {
+            route |= Self::TREX;
+        }
+        if desc.chips.contains(map::Chips::FBI) {
+            route |= Self::FBI;
+        }
+        if matches!(
+            offset,
+            addr::DAC_DATA
+                | addr::H_SYNC
+                | addr::V_SYNC
+                | addr::FBI_INIT0
+                | addr::FBI_INIT1
+                | addr::FBI_INIT4
+        ) {
+            route |= Self::TIMING;
+        }
+        route
+    }
+}
+
+/// [`Route`] bits of every register index.
+static ROUTES: [u8; 256] = {
+    let mut routes = [0; 256];
+    let mut i = 0;
+    while i < 256 {
+        routes[i] = Route::of(i as u32 * 4);
+        i += 1;
+    }
+    routes
+};
+
 impl Board {
     /// The normal-map register offset and chip mask of a register-region address.
     fn decode_register(&self, addr: u32) -> (u32, u32) {
@@ -44,21 +110,23 @@ impl Board {
 
     fn write_register<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
         let (offset, chips) = self.decode_register(bus_addr);
-        let Some(desc) = map::desc_of(offset) else {
-            self.diagnostics.note(Diagnostic::ReservedWrite);
-            return;
-        };
-        if !desc.access.contains(map::Access::WRITE) {
-            self.diagnostics.note(Diagnostic::ReadOnlyWrite);
-            return;
-        }
-        let is_init = matches!(offset, addr::FBI_INIT0..=addr::FBI_INIT3 | addr::FBI_INIT4);
-        if is_init && self.init_enable & 1 == 0 {
-            self.diagnostics.note(Diagnostic::InitWriteDisabled);
-            return;
+        let route = ROUTES[addr::index(offset)];
+        if route & Route::CHECKED != 0 {
+            if route & Route::RESERVED != 0 {
+                self.diagnostics.note(Diagnostic::ReservedWrite);
+                return;
+            }
+            if route & Route::READ_ONLY != 0 {
+                self.diagnostics.note(Diagnostic::ReadOnlyWrite);
+                return;
+            }
+            if self.init_enable & 1 == 0 {
+                self.diagnostics.note(Diagnostic::InitWriteDisabled);
+                return;
+            }
         }
         // TMU writes first: a triangle command must see the TMUs' new state.
-        if desc.chips.contains(map::Chips::TREX) {
+        if route & Route::TREX != 0 {
             // Float S/T/W writes go to the TMUs as they are: the TMU keeps their 32
             // fraction bits (MAME, DOSBox Staging and 86Box all do).
             for (i, tmu) in self.tmus.iter_mut().enumerate() {
@@ -67,7 +135,7 @@ impl Board {
                 }
             }
         }
-        if chips & 1 == 0 || !desc.chips.contains(map::Chips::FBI) {
+        if chips & 1 == 0 || route & Route::FBI == 0 {
             return;
         }
         match self.fbi.write_reg::<M>(offset, value) {
@@ -80,6 +148,9 @@ impl Board {
                     self.timing.swap(value);
                 }
             }
+        }
+        if route & Route::TIMING == 0 {
+            return;
         }
         // The frame's timing follows the video registers and the DAC (spec 10).
         match offset {
@@ -249,5 +320,57 @@ impl RegisterBus for Board {
         } else {
             self.diagnostics.note(Diagnostic::UnmodelledPci);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::BoardConfig;
+
+    #[test]
+    fn routes_follow_the_register_table() {
+        for index in 0..256u32 {
+            let offset = index * 4;
+            let route = ROUTES[index as usize];
+            match map::desc_of(offset) {
+                None => assert_eq!(route, Route::RESERVED, "{offset:#x}"),
+                Some(d) => {
+                    let writable = d.access.contains(map::Access::WRITE);
+                    assert_eq!(route & Route::READ_ONLY == 0, writable, "{offset:#x}");
+                    let trex = d.chips.contains(map::Chips::TREX);
+                    assert_eq!(route & Route::TREX != 0, trex, "{offset:#x}");
+                    let fbi = d.chips.contains(map::Chips::FBI);
+                    assert_eq!(route & Route::FBI != 0, fbi, "{offset:#x}");
+                }
+            }
+        }
+        assert_eq!(ROUTES.iter().filter(|&&r| r & Route::INIT != 0).count(), 5);
+        assert_eq!(
+            ROUTES.iter().filter(|&&r| r & Route::TIMING != 0).count(),
+            6
+        );
+    }
+
+    #[test]
+    fn refused_writes_are_counted_and_change_nothing() {
+        let mut board = Board::new(BoardConfig::default());
+        let fbz_mode = addr::FBZ_MODE;
+        board.write32(fbz_mode, 0x10);
+        // A reserved word, a read-only register, and fbiInit1 before initEnable.
+        board.write32(0x3fc, 1);
+        board.write32(addr::FBI_PIXELS_IN, 5);
+        board.write32(addr::FBI_INIT1, 0x1234);
+        let d = board.diagnostics();
+        assert_eq!(d.count(Diagnostic::ReservedWrite), 1);
+        assert_eq!(d.count(Diagnostic::ReadOnlyWrite), 1);
+        assert_eq!(d.count(Diagnostic::InitWriteDisabled), 1);
+        assert_eq!(board.fbi.reg(addr::FBI_INIT1), 0);
+        assert_eq!(board.fbi.reg(fbz_mode), 0x10);
+        // With initEnable bit 0 the init write is taken.
+        board.pci_write(PCI_INIT_ENABLE, 1);
+        board.write32(addr::FBI_INIT1, 0x1234);
+        assert_eq!(board.fbi.reg(addr::FBI_INIT1), 0x1234);
+        assert_eq!(board.diagnostics().count(Diagnostic::InitWriteDisabled), 1);
     }
 }

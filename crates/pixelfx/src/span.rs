@@ -20,7 +20,8 @@
 //! detects that and shades such a chunk pixel by pixel.
 
 use sst1_regs::{
-    AlphaLocalSelect, AlphaSelect, CcMselect, DepthFunction, FbzColorPath, FbzMode, RgbSelect, Rgba,
+    AlphaFunction, AlphaLocalSelect, AlphaSelect, CcMselect, CompareFunction, DepthFunction,
+    FbzColorPath, FbzMode, RgbSelect, Rgba,
 };
 
 use sst1_dither::Dither;
@@ -36,7 +37,7 @@ use crate::profile::{AlphaTestInput, AuxWrite, ZAlphaByte};
 use crate::raster::TexelSource;
 use crate::stats::Kill;
 use crate::stats::Stats;
-use crate::{alpha_test, blend, fog, stipple};
+use crate::{blend, fog, stipple};
 
 /// The most pixels one chunk holds.
 pub const LANES: usize = 64;
@@ -251,7 +252,9 @@ fn kill_where<const L: usize>(
 ) {
     let mut killed = 0u32;
     for (i, a) in alive.iter_mut().enumerate().take(n) {
-        let f = *a && fails(i);
+        // `&`, not `&&`: every lane's test is evaluated (each is a pure read), so the
+        // loop has no branch per lane.
+        let f = *a & fails(i);
         killed += f as u32;
         *a &= !f;
     }
@@ -260,29 +263,42 @@ fn kill_where<const L: usize>(
     }
 }
 
-/// `fails[i] = !func.passes(source[i], dest[i])` for every lane (the depth test), the
-/// function chosen once for all lanes rather than once per lane: each arm is a plain
-/// comparison loop, which vectorises.
+/// `fails[i] = !func.passes(s, r)` for the `i`-th pair `(s, r)` (the depth and alpha
+/// tests), the function chosen once for all lanes rather than once per lane: each arm
+/// is a plain comparison loop, which vectorises.
 #[inline(always)]
-fn compare_fails(func: DepthFunction, source: &[i32], dest: &[u16], fails: &mut [bool]) {
+fn compare_fails(
+    func: CompareFunction,
+    pairs: impl Iterator<Item = (i32, i32)>,
+    fails: &mut [bool],
+) {
     macro_rules! each {
-        ($op:tt) => {
-            for (f, (&s, &d)) in fails.iter_mut().zip(source.iter().zip(dest)) {
-                *f = !(s $op i32::from(d));
+        (|$s:ident, $r:ident| $pass:expr) => {
+            for (f, ($s, $r)) in fails.iter_mut().zip(pairs) {
+                *f = !$pass;
             }
         };
     }
-    let n = fails.len().min(source.len()).min(dest.len());
     match func {
-        DepthFunction::Never => fails[..n].fill(true),
-        DepthFunction::Less => each!(<),
-        DepthFunction::Equal => each!(==),
-        DepthFunction::LessEqual => each!(<=),
-        DepthFunction::Greater => each!(>),
-        DepthFunction::NotEqual => each!(!=),
-        DepthFunction::GreaterEqual => each!(>=),
-        DepthFunction::Always => fails[..n].fill(false),
+        CompareFunction::Never => each!(|_s, _r| false),
+        CompareFunction::Less => each!(|s, r| s < r),
+        CompareFunction::Equal => each!(|s, r| s == r),
+        CompareFunction::LessEqual => each!(|s, r| s <= r),
+        CompareFunction::Greater => each!(|s, r| s > r),
+        CompareFunction::NotEqual => each!(|s, r| s != r),
+        CompareFunction::GreaterEqual => each!(|s, r| s >= r),
+        CompareFunction::Always => each!(|_s, _r| true),
     }
+}
+
+/// The alpha test ([`crate::alpha_test::test`]) of every lane of `alpha`: where it fails.
+#[inline(always)]
+fn alpha_fails<const L: usize>(func: AlphaFunction, alpha: &[i32; L], reference: u8) -> [bool; L] {
+    let mut fails = [false; L];
+    // `alpha_test::test` takes the low 8 bits.
+    let pairs = alpha.iter().map(|&a| (a & 0xff, i32::from(reference)));
+    compare_fails(func, pairs, &mut fails);
+    fails
 }
 
 /// `v` through an opaque identity: for a reference chosen once per chunk among several
@@ -521,7 +537,11 @@ impl Shader<'_> {
             let mut fails = [no_aux_fails; L];
             let w = aux_words;
             let ram = &mem.aux()[w.first..w.first + (w.hi - w.lo)];
-            compare_fails(func, &source[w.lo..w.hi], ram, &mut fails[w.lo..w.hi]);
+            let pairs = source[w.lo..w.hi]
+                .iter()
+                .zip(ram)
+                .map(|(&s, &d)| (s, i32::from(d)));
+            compare_fails(func, pairs, &mut fails[w.lo..w.hi]);
             kill_where(self.stats, &mut alive, n, Kill::DepthFunc, |i| fails[i]);
         }
 
@@ -586,9 +606,8 @@ impl Shader<'_> {
         let (func, reference) = (am.alpha_function(), am.alpha_ref());
         let test_combined = profile.alpha_test_input == AlphaTestInput::Combined;
         if alpha_test && !test_combined {
-            kill_where(self.stats, &mut alive, n, Kill::AlphaFunc, |i| {
-                !alpha_test::test(func, other_a[i] as u8, reference)
-            });
+            let fails = alpha_fails(func, other_a, reference);
+            kill_where(self.stats, &mut alive, n, Kill::AlphaFunc, |i| fails[i]);
         }
 
         // --- local selection ---
@@ -642,9 +661,8 @@ impl Shader<'_> {
             zero,
         );
         if alpha_test && test_combined {
-            kill_where(self.stats, &mut alive, n, Kill::AlphaFunc, |i| {
-                !alpha_test::test(func, combined.c[3][i] as u8, reference)
-            });
+            let fails = alpha_fails(func, &combined.c[3], reference);
+            kill_where(self.stats, &mut alive, n, Kill::AlphaFunc, |i| fails[i]);
         }
 
         // --- fog ---

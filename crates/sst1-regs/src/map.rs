@@ -327,15 +327,24 @@ pub fn desc_of(offset: u32) -> Option<&'static RegDesc> {
 /// reserved word), usable in constants: the one place the spec table's "Bits" column is
 /// turned into masks.
 pub const fn mask_of(offset: u32) -> u32 {
+    match desc_const(offset) {
+        Some(d) => d.mask(),
+        None => 0,
+    }
+}
+
+/// [`desc_of`] usable in constants (it walks the table): for tables built at compile
+/// time from the register table, such as the board's per-register write routes.
+pub const fn desc_const(offset: u32) -> Option<&'static RegDesc> {
     let index = addr::index(offset);
     let mut i = 0;
     while i < TABLE.len() {
         if (TABLE[i].offset / 4) as usize == index {
-            return TABLE[i].mask();
+            return Some(&TABLE[i]);
         }
         i += 1;
     }
-    0
+    None
 }
 
 /// The spec name of the register at `offset` (bits 9:2 used), `"reserved"` for gaps.
