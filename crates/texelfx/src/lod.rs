@@ -146,21 +146,41 @@ pub(crate) fn reciplog_in(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) ->
     (if neg { recip.wrapping_neg() } else { recip }, log)
 }
 
-/// The log of [`reciplog_in`] alone, without branches, for the span kernels' lane loops:
-/// the same integer for every value (test `branch_free_reciplog_log`).
+/// Bits 30:14 of a mantissa normalised to bit 31, as [`reciplog_in`] reads it: the
+/// table index (bits 30:22) and the interpolation weight (bits 21:14) together.
+const MANTISSA_KEYS: usize = 1 << 17;
+
+/// For every mantissa key ([`MANTISSA_KEYS`]), the log fraction [`reciplog_in`] takes
+/// from the reciprocal/log table: the two entries interpolated and rounded to 8 bits
+/// (0..=256), computed once from [`reciplog_table`], so that the span kernels' lanes
+/// find it with one load instead of two loads, two multiplies and a rounding.
+pub(crate) fn reciplog_log_fractions() -> &'static [u16; MANTISSA_KEYS] {
+    static FRACTIONS: std::sync::OnceLock<Box<[u16; MANTISSA_KEYS]>> = std::sync::OnceLock::new();
+    FRACTIONS.get_or_init(|| {
+        let table = reciplog_table();
+        let mut fractions = Box::new([0u16; MANTISSA_KEYS]);
+        for (key, f) in fractions.iter_mut().enumerate() {
+            let (index, interp) = (key >> 8, key as u32 & 0xff);
+            let rlog = (table[index][1] * (0x100 - interp) + table[index + 1][1] * interp) >> 8;
+            *f = ((rlog + (1 << 13)) >> 14) as u16;
+        }
+        fractions
+    })
+}
+
+/// The log of [`reciplog_in`] alone, without branches, for the span kernels' lane
+/// loops, its fraction from [`reciplog_log_fractions`]: the same integer for every
+/// value (test `branch_free_reciplog_log`).
 #[inline(always)]
-pub(crate) fn reciplog_log(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) -> i32 {
+pub(crate) fn reciplog_log_keyed(fractions: &[u16; MANTISSA_KEYS], value: i64) -> i32 {
     let mag = value.wrapping_abs() as u64;
     let high = mag & 0xffff_0000_0000 != 0;
     let temp = if high { (mag >> 16) as u32 } else { mag as u32 };
     let lz = temp.leading_zeros();
     let exponent = if high { -16 } else { 0 } + lz as i32;
-    // A zero `temp` (lz = 32) shifts by 0 and stays 0; its log is replaced below.
     let norm = temp.wrapping_shl(lz);
-    let index = (norm >> 22 & 0x1ff) as usize;
-    let interp = norm >> 14 & 0xff;
-    let rlog = (table[index][1] * (0x100 - interp) + table[index + 1][1] * interp) >> 8;
-    let log = ((exponent + 1) << 8) - ((rlog + (1 << 13)) >> 14) as i32;
+    let log =
+        ((exponent + 1) << 8) - i32::from(fractions[(norm >> 14) as usize & (MANTISSA_KEYS - 1)]);
     if temp == 0 {
         1000 << 8
     } else {
@@ -472,7 +492,6 @@ mod tests {
 
     #[test]
     fn branch_free_reciplog_log() {
-        let table = reciplog_table();
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
         let mut values = vec![
             0,
@@ -491,8 +510,18 @@ mod tests {
             x ^= x << 17;
             values.push((x as i64) >> (x % 64));
         }
+        // Every mantissa key at a few exponents, both signs.
+        for key in 0..MANTISSA_KEYS as i64 {
+            let norm = 1 << 31 | key << 14 | (key * 7 & 0x3fff);
+            for shift in [0, 5, 17, 31] {
+                values.push(norm >> shift);
+                values.push(-(norm << 16 >> shift));
+            }
+        }
+        let fractions = reciplog_log_fractions();
         for v in values {
-            assert_eq!(reciplog_log(table, v), reciplog_dosbox(v).1, "{v:#x}");
+            let log = reciplog_dosbox(v).1;
+            assert_eq!(reciplog_log_keyed(fractions, v), log, "{v:#x}");
         }
     }
 

@@ -550,8 +550,10 @@ impl Tmu {
                 }
                 LodCalc::Dosbox => {
                     // Source: DOSBox Staging `TEXTURE_PIPELINE` (as `lod::w_term`).
-                    let table = lod::reciplog_table();
-                    w_terms(w, n, lod_from, lod, |w| lod::reciplog_log(table, w))
+                    let fractions = lod::reciplog_log_fractions();
+                    w_terms(w, n, lod_from, lod, |w| {
+                        lod::reciplog_log_keyed(fractions, w)
+                    })
                 }
                 LodCalc::Box86 => w_terms(w, n, lod_from, lod, |w| lod::w_term(LodCalc::Box86, w)),
             }
