@@ -512,7 +512,7 @@ mod tests {
         }
         // Every mantissa key at a few exponents, both signs.
         for key in 0..MANTISSA_KEYS as i64 {
-            let norm = 1 << 31 | key << 14 | (key * 7 & 0x3fff);
+            let norm = 1 << 31 | key << 14 | ((key * 7) & 0x3fff);
             for shift in [0, 5, 17, 31] {
                 values.push(norm >> shift);
                 values.push(-(norm << 16 >> shift));
