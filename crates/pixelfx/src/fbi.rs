@@ -164,6 +164,7 @@ impl Fbi {
     /// A register write. `offset` is a normal-map byte offset; the board has applied
     /// chip select and the `initEnable` gate for `fbiInit*`. `M` is the model of the chip
     /// ([`crate::model`]); the caller guarantees that the profile this FBI holds is `M`'s.
+    #[inline]
     pub fn write_reg<M: PixelModel>(&mut self, offset: u32, value: u32) -> Command {
         let idx = addr::index(offset);
         let profile = M::pixel(&self.profile);

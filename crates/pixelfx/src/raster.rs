@@ -247,11 +247,10 @@ impl Fbi {
             stop,
             prow,
         } = *row;
-        let params = self.params;
         let dy = y - ay;
         let mut stipple = st.stipple;
         if let Some(c) = copy {
-            c.step_row(start, stop, params.right_to_left);
+            c.step_row(start, stop, self.params.right_to_left);
         }
         if let Some(consts) = consts.filter(|_| stop - start > SHORT_ROW) {
             let mut x0 = start;
@@ -267,7 +266,7 @@ impl Fbi {
                     ax,
                     dy,
                 };
-                let it = Iterated::at(&params, x0 - ax, dy);
+                let it = Iterated::at(&self.params, x0 - ax, dy);
                 let dest_words = Words::of(self, st.dest, x0, n, scry);
                 let aux_words = st
                     .aux
@@ -311,6 +310,8 @@ impl Fbi {
         } else {
             self.path_counts.reference += (stop - start) as u64;
         }
+        // A copy: the pixels below borrow the FBI mutably.
+        let params = self.params;
         let watched = self.watched_column(scry);
         let mut it = Iterated::at(&params, start - ax, dy);
         for x in start..stop {
