@@ -52,22 +52,129 @@ impl Fbi {
         }
         for y in low..high {
             let scry = self.screen_y(y, mode.y_origin());
-            for x in left..right {
-                if let Some(i) = dest.and_then(|d| self.fb.index(d, x, scry)) {
-                    // The fill's dither cell is indexed with the raster row, whatever
-                    // `PatternRow` says for triangles: with the screen row the glide-sdk
-                    // clears (lower-left origin, dithering on) differ from all three
-                    // references on ~120 k pixels; with the raster row on none.
-                    self.fb.ram[i] = cell[(y & 3) as usize][(x & 3) as usize];
-                    self.stats.pixels_out += 1;
+            // The fill's dither cell is indexed with the raster row, whatever
+            // `PatternRow` says for triangles: with the screen row the glide-sdk clears
+            // (lower-left origin, dithering on) differ from all three references on
+            // ~120 k pixels; with the raster row on none.
+            let pattern = cell[(y & 3) as usize];
+            let colour_row = dest.and_then(|d| self.fb.row_words(d, left, right, scry));
+            let aux_row = aux.and_then(|a| self.fb.row_words(a, left, right, scry));
+            let crossing = match (&colour_row, &aux_row) {
+                (Some((_, c)), Some((_, a))) => c.start < a.end && a.start < c.end,
+                _ => false,
+            };
+            if crossing || self.generic_path {
+                // Colour and aux words of one row meet (a layout no driver sets), or
+                // the reference path is forced: pixel by pixel, colour before aux, so
+                // that each word ends as that order leaves it.
+                self.fill_row_per_pixel(dest, aux, &pattern, left..right, scry, depth);
+                continue;
+            }
+            if let Some((x0, words)) = colour_row {
+                self.stats.pixels_out += words.len() as u64;
+                for (k, w) in self.fb.ram[words].iter_mut().enumerate() {
+                    *w = pattern[(x0 as usize + k) & 3];
                 }
-                if let Some(i) = aux.and_then(|a| self.fb.index(a, x, scry)) {
-                    self.fb.ram[i] = depth;
-                }
+            }
+            if let Some((_, words)) = aux_row {
+                self.fb.ram[words].fill(depth);
             }
         }
         if self.watch.is_some() {
             self.watch_fill(low..high, left..right, mode.y_origin(), dest, aux);
         }
+    }
+
+    /// One row of a fill, pixel by pixel: frame-buffer row `scry`, columns `columns`,
+    /// the colour from `pattern` (the dither cell's row), indexed `x & 3`.
+    fn fill_row_per_pixel(
+        &mut self,
+        dest: Option<usize>,
+        aux: Option<usize>,
+        pattern: &[u16; 4],
+        columns: std::ops::Range<i32>,
+        scry: i32,
+        depth: u16,
+    ) {
+        for x in columns {
+            if let Some(i) = dest.and_then(|d| self.fb.index(d, x, scry)) {
+                self.fb.ram[i] = pattern[(x & 3) as usize];
+                self.stats.pixels_out += 1;
+            }
+            if let Some(i) = aux.and_then(|a| self.fb.index(a, x, scry)) {
+                self.fb.ram[i] = depth;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::RuntimeProfile;
+    use sst1_regs::addr;
+
+    /// Fills with random layouts (buffers that overlap, rows that run past memory),
+    /// clip rectangles, masks, dithering and Y origins, by rows and pixel by pixel: the
+    /// same memory and counters.
+    #[test]
+    fn row_fills_equal_pixel_fills() {
+        let mut x = 0x853c_49e6_748f_ea9bu64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x as u32
+        };
+        let mut crossing_layouts = 0;
+        for round in 0..300 {
+            let mut fbis = [Fbi::new(2), Fbi::new(2)];
+            let writes = [
+                // Tiles in X (row pitch), buffer offset in pages, triple buffering.
+                (addr::FBI_INIT1, (next() & 0xf) << 4),
+                (addr::FBI_INIT2, (next() & 0x1ff) << 11 | (next() & 1) << 4),
+                (addr::FBI_INIT3, (next() & 0x3ff) << 22),
+                (
+                    addr::FBZ_MODE,
+                    next() & (1 << 8 | 1 << 9 | 1 << 10 | 1 << 11 | 1 << 17 | 3 << 14),
+                ),
+                (addr::CLIP_LEFT_RIGHT, next() & 0x03ff_03ff),
+                (addr::CLIP_LOW_Y_HIGH_Y, next() & 0x03ff_03ff),
+                (addr::COLOR1, next()),
+                (addr::ZA_COLOR, next()),
+            ];
+            let mut memory = Vec::new();
+            for (i, fbi) in fbis.iter_mut().enumerate() {
+                for &(offset, value) in &writes {
+                    fbi.write_reg::<RuntimeProfile>(offset, value);
+                }
+                if memory.is_empty() {
+                    memory = (0..fbi.fb.ram.len()).map(|_| next() as u16).collect();
+                }
+                fbi.fb.ram.copy_from_slice(&memory);
+                fbi.set_generic_path(i == 1);
+            }
+            let [rows, pixels] = &mut fbis;
+            let (left, right, low, high) = rows.clip_rect();
+            if let (Some(d), Some(a)) = (
+                rows.colour_buffer(rows.fbz_mode().draw_buffer()),
+                rows.fb.aux_base(),
+            ) {
+                let (w, n) = (
+                    rows.fb.layout.row_pixels as usize,
+                    (right - left).max(0) as usize,
+                );
+                crossing_layouts +=
+                    usize::from(d.abs_diff(a) % w.max(1) < n && n > 0 && high > low);
+            }
+            rows.fastfill::<RuntimeProfile>();
+            pixels.fastfill::<RuntimeProfile>();
+            assert!(rows.fb.ram == pixels.fb.ram, "round {round}");
+            assert_eq!(rows.stats, pixels.stats, "round {round}");
+        }
+        assert!(
+            crossing_layouts > 0,
+            "some layouts put colour and aux words in one row"
+        );
     }
 }

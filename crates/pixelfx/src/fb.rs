@@ -122,6 +122,25 @@ impl FrameBuffer {
         }
     }
 
+    /// The words of columns `left..right` of row `y` of the buffer at `base` that exist
+    /// (those [`FrameBuffer::index`] finds: columns from 0, words below the end of
+    /// memory), with the first such column; `None` where there are none.
+    pub fn row_words(
+        &self,
+        base: usize,
+        left: i32,
+        right: i32,
+        y: i32,
+    ) -> Option<(i32, std::ops::Range<usize>)> {
+        let x0 = left.max(0);
+        if y < 0 || x0 >= right {
+            return None;
+        }
+        let start = base + y as usize * self.layout.row_pixels as usize + x0 as usize;
+        let end = (start + (right - x0) as usize).min(self.ram.len());
+        (start < end).then_some((x0, start..end))
+    }
+
     /// Memory word index of pixel (x, y) of the buffer at `base`, or `None` outside memory.
     #[inline]
     pub fn index(&self, base: usize, x: i32, y: i32) -> Option<usize> {

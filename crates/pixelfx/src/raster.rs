@@ -128,7 +128,8 @@ impl Fbi {
     }
 
     /// Force the reference path (every mode register read at run time for every pixel)
-    /// instead of the span kernels. Both give identical pixels and counters; the switch
+    /// instead of the span kernels, and fills pixel by pixel instead of by rows. Both
+    /// give identical pixels and counters; the switch
     /// exists to prove that (`crates/board/tests/generic_vs_fast.rs`) and to debug the
     /// kernels.
     pub fn set_generic_path(&mut self, on: bool) {

@@ -95,10 +95,23 @@ pub fn decode(regs: &NccRegs, texel: u8) -> Rgb8 {
 }
 
 /// Decodes all 256 compressed texels of a table (index = the 8-bit texel).
+///
+/// The same values as [`decode`] of each texel, with each field read once: the sixteen
+/// `I + Q` sums first, then each intensity added to each (the TMU expands a table on
+/// every write of one of its words).
 pub fn expand(regs: &NccRegs) -> [Rgb8; 256] {
+    let mut iq = [[0i32; 3]; 16];
+    for (k, sum) in iq.iter_mut().enumerate() {
+        let (i, q) = (iq_entry(regs[4 + (k >> 2)]), iq_entry(regs[8 + (k & 3)]));
+        *sum = [i[0] + q[0], i[1] + q[1], i[2] + q[2]];
+    }
     let mut out = [[0; 3]; 256];
-    for (texel, slot) in out.iter_mut().enumerate() {
-        *slot = decode(regs, texel as u8);
+    // Texel `{y, i, q}` is entry `16 * y + (4 * i + q)`.
+    for (y, row) in out.chunks_exact_mut(16).enumerate() {
+        let y = i32::from(y_entry(regs, y));
+        for (slot, sum) in row.iter_mut().zip(&iq) {
+            *slot = sum.map(|c| (y + c).clamp(0, 255) as u8);
+        }
     }
     out
 }
@@ -110,6 +123,24 @@ mod tests {
     /// Packs three 9-bit signed components into an I/Q word.
     fn pack_iq(r: i32, g: i32, b: i32) -> u32 {
         ((r as u32 & 0x1ff) << 18) | ((g as u32 & 0x1ff) << 9) | (b as u32 & 0x1ff)
+    }
+
+    #[test]
+    fn expand_decodes_every_texel() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..2000 {
+            let mut regs = [0u32; NCC_WORDS];
+            for r in &mut regs {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                *r = x as u32;
+            }
+            let table = expand(&regs);
+            for texel in 0..=255u8 {
+                assert_eq!(table[usize::from(texel)], decode(&regs, texel), "{regs:x?}");
+            }
+        }
     }
 
     #[test]
