@@ -1,7 +1,8 @@
 //! `voodoo bench`: replay throughput of the fast path (the span kernels) and the
 //! reference path (`Board::set_generic_path(true)`) in the same run.
 //!
-//! Each scene is loaded (or generated and parsed) first; only the replay is timed, from
+//! Each scene is loaded (or generated and parsed) first, and encoded in the binary form;
+//! only the replay is timed (the `binary` row's replay decodes that form as it runs), from
 //! the replaying thread's CPU time (`CLOCK_THREAD_CPUTIME_ID`; wall time where there is
 //! none), because other load on a shared machine inflates wall time far more. Each
 //! path runs `iters` times on a fresh board and the fastest run is kept. Pixels are the
@@ -17,7 +18,9 @@ use std::time::{Duration, Instant};
 
 use sst1_board::{Board, Method, Stats};
 use sst1_trace::scenes::{self, RandomStates};
-use sst1_trace::{execute, load_trace, read_trace, Trace};
+use sst1_trace::{
+    encode_binary, execute, execute_trace_stream, load_trace, read_trace, stream_trace, Trace,
+};
 
 /// The recorded traces `voodoo bench` runs by default (in `traces/conformance/traces`).
 pub const PERF_TRACES: [&str; 2] = ["perf_gouraud_heavy", "perf_tex_heavy"];
@@ -51,10 +54,22 @@ pub struct Options {
     pub chart: Option<PathBuf>,
 }
 
-/// One scene to run: its name and ops.
+/// One scene to run: its name and ops, and the ops in the binary trace form.
 struct Scene {
     name: String,
     trace: Trace,
+    binary: Vec<u8>,
+}
+
+impl Scene {
+    fn new(name: String, trace: Trace) -> Self {
+        let binary = encode_binary(&trace);
+        Self {
+            name,
+            trace,
+            binary,
+        }
+    }
 }
 
 /// One replay's cost.
@@ -127,10 +142,14 @@ enum Run {
     Fast(usize),
     /// An approximate method, one thread.
     Approx(Method),
+    /// The fast path, one thread, reading the scene's binary form as it runs (what
+    /// `voodoo replay FILE.vtrace` does, from memory rather than a file).
+    FromBinary,
 }
 
-/// Replays `trace` once on a fresh board.
-fn run_once(trace: &Trace, run: Run) -> (Timing, Stats) {
+/// Replays `scene` once on a fresh board.
+fn run_once(scene: &Scene, run: Run) -> (Timing, Stats) {
+    let trace = &scene.trace;
     let mut board = Board::new(trace.board_config());
     match run {
         Run::Reference => board.set_generic_path(true),
@@ -139,24 +158,36 @@ fn run_once(trace: &Trace, run: Run) -> (Timing, Stats) {
             board.set_method(method);
             board.set_threads(1);
         }
+        Run::FromBinary => board.set_threads(1),
     }
     let cpu0 = thread_cpu_time();
     let start = Instant::now();
-    let dumps = execute(&trace.ops, &mut board, |_| {});
+    if let Run::FromBinary = run {
+        // An encoded trace always decodes; were it not to, the counters would differ
+        // from the fast path's and the bench would say so.
+        if let Ok(mut stream) = stream_trace(&scene.name, &scene.binary[..]) {
+            let sink = |dump| {
+                std::hint::black_box(dump);
+                Ok(())
+            };
+            let _ = execute_trace_stream(&mut stream, None, &mut board, |_| {}, sink);
+        }
+    } else {
+        std::hint::black_box(execute(&trace.ops, &mut board, |_| {}));
+    }
     let wall = start.elapsed();
     let cpu = thread_cpu_time()
         .zip(cpu0)
         .map(|(b, a)| b.saturating_sub(a));
-    std::hint::black_box(dumps);
     let by_wall = matches!(run, Run::Fast(n) if n > 1);
     (Timing { wall, cpu, by_wall }, board.stats())
 }
 
 /// The fastest of `iters` runs.
-fn best_of(trace: &Trace, run: Run, iters: u32) -> (Timing, Stats) {
+fn best_of(scene: &Scene, run: Run, iters: u32) -> (Timing, Stats) {
     let mut best: Option<(Timing, Stats)> = None;
     for _ in 0..iters.max(1) {
-        let (t, s) = run_once(trace, run);
+        let (t, s) = run_once(scene, run);
         if best.is_none_or(|(b, _)| t.key() < b.key()) {
             best = Some((t, s));
         }
@@ -210,10 +241,8 @@ fn default_scenes(o: &Options) -> Result<Vec<Scene>, String> {
     for name in PERF_TRACES {
         let path = dir.join(format!("{name}.trace.gz"));
         if path.exists() {
-            out.push(Scene {
-                name: name.to_owned(),
-                trace: load_trace(&path).map_err(|e| e.to_string())?,
-            });
+            let trace = load_trace(&path).map_err(|e| e.to_string())?;
+            out.push(Scene::new(name.to_owned(), trace));
         } else if !o.json {
             eprintln!("voodoo bench: {} not found, skipped", path.display());
         }
@@ -241,7 +270,7 @@ fn default_scenes(o: &Options) -> Result<Vec<Scene>, String> {
     ];
     for (name, text) in generated {
         let trace = read_trace(&name, text.as_bytes()).map_err(|e| e.to_string())?;
-        out.push(Scene { name, trace });
+        out.push(Scene::new(name, trace));
     }
     Ok(out)
 }
@@ -270,10 +299,10 @@ pub fn bench(o: &Options) -> Result<(), String> {
         o.traces
             .iter()
             .map(|p| {
-                Ok(Scene {
-                    name: stem(p),
-                    trace: load_trace(p).map_err(|e| e.to_string())?,
-                })
+                Ok(Scene::new(
+                    stem(p),
+                    load_trace(p).map_err(|e| e.to_string())?,
+                ))
             })
             .collect::<Result<_, String>>()?
     };
@@ -285,7 +314,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
     };
     if !o.json {
         println!(
-            "best of {} run(s) per path, {timer} of the replay (parsing excluded; the threaded row by wall time){}",
+            "best of {} run(s) per path, {timer} of the replay (parsing excluded but on the binary row, which decodes the binary form as it runs; the threaded row by wall time){}",
             o.iters.max(1),
             clock.map_or(String::new(), |(hz, from)| format!(
                 "; clock {:.2} GHz ({from})",
@@ -308,18 +337,23 @@ pub fn bench(o: &Options) -> Result<(), String> {
     let mut json_scenes = Vec::new();
     let mut all_match = true;
     for scene in &scenes {
-        let (t, s) = best_of(&scene.trace, Run::Fast(1), o.iters);
+        let (t, s) = best_of(scene, Run::Fast(1), o.iters);
         let mut fast = PathResult {
             timing: t,
             stats: s,
         };
-        let (t, s) = best_of(&scene.trace, Run::Reference, o.iters);
+        let (t, s) = best_of(scene, Run::Reference, o.iters);
         let reference = PathResult {
             timing: t,
             stats: s,
         };
+        let (t, s) = best_of(scene, Run::FromBinary, o.iters);
+        let from_binary = PathResult {
+            timing: t,
+            stats: s,
+        };
         let threaded = (o.threads > 1).then(|| {
-            let (t, s) = best_of(&scene.trace, Run::Fast(o.threads), o.iters);
+            let (t, s) = best_of(scene, Run::Fast(o.threads), o.iters);
             PathResult {
                 timing: t,
                 stats: s,
@@ -332,7 +366,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
             let methods: Vec<Method> = Method::ALL.into_iter().filter(|m| !m.is_exact()).collect();
             let mut best: Vec<Option<(Timing, Stats)>> = vec![None; methods.len()];
             for _ in 0..o.iters.max(1) {
-                let (t, s) = run_once(&scene.trace, Run::Fast(1));
+                let (t, s) = run_once(scene, Run::Fast(1));
                 if t.key() < fast.timing.key() {
                     fast = PathResult {
                         timing: t,
@@ -340,7 +374,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
                     };
                 }
                 for (slot, &m) in best.iter_mut().zip(&methods) {
-                    let (t, s) = run_once(&scene.trace, Run::Approx(m));
+                    let (t, s) = run_once(scene, Run::Approx(m));
                     if slot.is_none_or(|(b, _)| t.key() < b.key()) {
                         *slot = Some((t, s));
                     }
@@ -370,6 +404,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
             .as_ref()
             .map(|t| fast.timing.wall.as_secs_f64() / t.secs());
         let same = fast.stats == reference.stats
+            && from_binary.stats == fast.stats
             && threaded.as_ref().is_none_or(|t| t.stats == fast.stats);
         all_match &= same;
         let hz = clock.map(|(hz, _)| hz);
@@ -381,6 +416,7 @@ pub fn bench(o: &Options) -> Result<(), String> {
                 "triangles": fast.stats.triangles,
                 "fast": fast.json(hz),
                 "reference": reference.json(hz),
+                "from_binary": from_binary.json(hz),
                 "speedup": speedup,
                 "threads": o.threads,
                 "threaded": threaded.as_ref().map(|t| t.json(hz)),
@@ -399,6 +435,11 @@ pub fn bench(o: &Options) -> Result<(), String> {
             let mut rows = vec![
                 ("fast", &fast, format!("{speedup:.2}x")),
                 ("reference", &reference, String::new()),
+                (
+                    "binary",
+                    &from_binary,
+                    format!("{:.2}x/f", fast.secs() / from_binary.secs()),
+                ),
             ];
             if let (Some(t), Some(up)) = (&threaded, thread_speedup) {
                 rows.push((threads_label.as_str(), t, format!("{up:.2}x/1")));

@@ -191,8 +191,9 @@ enum Command {
     },
     /// Measure replay throughput of the fast path and the reference path in the same run:
     /// Mpix/s (`fbiPixelsIn` per second of the replaying thread's CPU time, parsing
-    /// excluded), Mtri/s, ns and cycles per pixel, and the fast path's speed-up. Default
-    /// scenes: perf_gouraud_heavy, perf_tex_heavy, 10-pixel Gouraud and textured
+    /// excluded), Mtri/s, ns and cycles per pixel, and the fast path's speed-up; a
+    /// `binary` row replays the fast path from the binary trace form, decoding included.
+    /// Default scenes: perf_gouraud_heavy, perf_tex_heavy, 10-pixel Gouraud and textured
     /// triangles, and a random-state scene.
     Bench {
         /// Trace files to measure instead of the default scenes.

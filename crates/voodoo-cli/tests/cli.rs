@@ -498,7 +498,7 @@ fn bench_reports_both_paths() {
         &["bench", "--iters", "1", "--threads", "2", "tiny.trace"],
     ));
     let lines: Vec<&str> = out.lines().collect();
-    assert_eq!(lines.len(), 5, "{out}");
+    assert_eq!(lines.len(), 6, "{out}");
     assert!(lines[0].starts_with("best of 1 run(s) per path, "), "{out}");
     let header: Vec<&str> = lines[1].split_whitespace().collect();
     assert_eq!(
@@ -523,7 +523,11 @@ fn bench_reports_both_paths() {
     let reference: Vec<&str> = lines[3].split_whitespace().collect();
     assert_eq!(reference[0], "reference", "{out}");
     assert_eq!(reference[reference.len() - 1], "20", "{out}");
-    let threaded: Vec<&str> = lines[4].split_whitespace().collect();
+    let binary: Vec<&str> = lines[4].split_whitespace().collect();
+    assert_eq!(binary[0], "binary", "{out}");
+    assert!(binary[5].ends_with("x/f"), "{out}");
+    assert_eq!(binary[binary.len() - 1], "20", "{out}");
+    let threaded: Vec<&str> = lines[5].split_whitespace().collect();
     assert_eq!((threaded[0], threaded[1]), ("2", "thr"), "{out}");
     assert!(threaded[6].ends_with("x/1"), "{out}");
     assert_eq!(threaded[threaded.len() - 1], "20", "{out}");
@@ -547,7 +551,7 @@ fn bench_reports_both_paths() {
     assert_eq!(scene["triangles"], 20);
     assert_eq!(scene["counters_match"], true);
     assert!(scene["pixels_in"].as_u64().unwrap() > 0);
-    for path in ["fast", "reference"] {
+    for path in ["fast", "reference", "from_binary"] {
         for key in [
             "cpu_s",
             "wall_s",
