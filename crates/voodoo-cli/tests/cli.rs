@@ -669,6 +669,7 @@ fn methods_stability_scenes_and_chart() {
         [
             "fast",
             "reference",
+            "binary",
             "nearest",
             "lod-per-chunk",
             "float-divide",
