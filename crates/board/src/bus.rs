@@ -26,10 +26,9 @@ pub const fn aperture_offset(bus_addr: u32) -> u32 {
     bus_addr & 0x00ff_fffc
 }
 
-/// What a write to a register does before and after it is stored, by register index
-/// (bits of a [`ROUTES`] entry), found at compile time from the register table
-/// ([`map::desc_const`]): one load per write rather than a search of the table and a
-/// chain of comparisons.
+/// Whether a write to a register is refused and which chips store it, by register
+/// index (bits of a [`ROUTES`] entry), found at compile time from the register table
+/// ([`map::desc_const`]): one load per write rather than a search of the table.
 struct Route;
 
 impl Route {
@@ -45,9 +44,6 @@ impl Route {
     const TREX: u8 = 8;
     /// The FBI stores it.
     const FBI: u8 = 16;
-    /// It changes what the timing model follows: the video timing, the DAC, or the
-    /// memory FIFO.
-    const TIMING: u8 = 32;
 
     const fn of(offset: u32) -> u8 {
         let Some(desc) = map::desc_const(offset) else {
@@ -65,17 +61,6 @@ impl Route {
         }
         if desc.chips.contains(map::Chips::FBI) {
             route |= Self::FBI;
-        }
-        if matches!(
-            offset,
-            addr::DAC_DATA
-                | addr::H_SYNC
-                | addr::V_SYNC
-                | addr::FBI_INIT0
-                | addr::FBI_INIT1
-                | addr::FBI_INIT4
-        ) {
-            route |= Self::TIMING;
         }
         route
     }
@@ -148,9 +133,6 @@ impl Board {
                     self.timing.swap(value);
                 }
             }
-        }
-        if route & Route::TIMING == 0 {
-            return;
         }
         // The frame's timing follows the video registers and the DAC (spec 10).
         match offset {
@@ -346,10 +328,6 @@ mod tests {
             }
         }
         assert_eq!(ROUTES.iter().filter(|&&r| r & Route::INIT != 0).count(), 5);
-        assert_eq!(
-            ROUTES.iter().filter(|&&r| r & Route::TIMING != 0).count(),
-            6
-        );
     }
 
     #[test]

@@ -130,10 +130,9 @@ pub(crate) fn reciplog_in(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) ->
     let index = ((temp >> 22) & 0x1ff) as usize;
     let interp = (temp >> 14) & 0xff;
     let (lo, hi) = (table[index], table[index + 1]);
-    let rlog = (lo[1] * (0x100 - interp) + hi[1] * interp) >> 8;
     let mut recip = u64::from((lo[0] * (0x100 - interp) + hi[0] * interp) >> 8);
     // Round the 22-bit log fraction to 8 bits; log(1/v) = exponent - log(mantissa).
-    let rlog = (rlog + (1 << 13)) >> 14;
+    let rlog = log_fraction(table, index, interp);
     let log = ((exponent + 1) << 8) - rlog as i32;
     // 22 fraction bits in the table, 15 wanted, input .32 normalised at bit 31.
     let shift = exponent - 6;
@@ -144,6 +143,15 @@ pub(crate) fn reciplog_in(table: &[[u32; 2]; RECIPLOG_STEPS + 1], value: i64) ->
     }
     let recip = recip as i64;
     (if neg { recip.wrapping_neg() } else { recip }, log)
+}
+
+/// `log2` of a mantissa as [`reciplog_in`] reads it: the table's two log entries at
+/// `index` and `index + 1` interpolated with the 8-bit weight `interp`, the 22-bit
+/// fraction rounded to 8 bits (0..=256).
+#[inline(always)]
+fn log_fraction(table: &[[u32; 2]; RECIPLOG_STEPS + 1], index: usize, interp: u32) -> u32 {
+    let rlog = (table[index][1] * (0x100 - interp) + table[index + 1][1] * interp) >> 8;
+    (rlog + (1 << 13)) >> 14
 }
 
 /// Bits 30:14 of a mantissa normalised to bit 31, as [`reciplog_in`] reads it: the
@@ -160,9 +168,7 @@ pub(crate) fn reciplog_log_fractions() -> &'static [u16; MANTISSA_KEYS] {
         let table = reciplog_table();
         let mut fractions = Box::new([0u16; MANTISSA_KEYS]);
         for (key, f) in fractions.iter_mut().enumerate() {
-            let (index, interp) = (key >> 8, key as u32 & 0xff);
-            let rlog = (table[index][1] * (0x100 - interp) + table[index + 1][1] * interp) >> 8;
-            *f = ((rlog + (1 << 13)) >> 14) as u16;
+            *f = log_fraction(table, key >> 8, key as u32 & 0xff) as u16;
         }
         fractions
     })
