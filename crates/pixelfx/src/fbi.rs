@@ -68,6 +68,9 @@ pub struct PathCounts {
     pub span_kernels: u64,
     /// Of those, on the render threads, in bands of rows ([`Fbi::set_threads`]).
     pub in_bands: u64,
+    /// Of those, in chunks packed from several short rows of a triangle
+    /// (`crate::span::Packed`).
+    pub packed: u64,
     /// Pixel by pixel because colour and aux words of different lanes alias (a buffer
     /// layout no driver sets; [`crate::span`]).
     pub aliased_layout: u64,
@@ -83,6 +86,7 @@ impl PathCounts {
     pub fn add(&mut self, other: &PathCounts) {
         self.span_kernels += other.span_kernels;
         self.in_bands += other.in_bands;
+        self.packed += other.packed;
         self.aliased_layout += other.aliased_layout;
         self.short_rows += other.short_rows;
         self.reference += other.reference;

@@ -30,7 +30,7 @@ pub mod watch;
 pub use fbi::{Command, Fbi, PathCounts};
 pub use model::{PixelModel, RuntimeProfile};
 pub use profile::PixelProfile;
-pub use raster::{NoTexture, TexelSource};
+pub use raster::{LanePlace, NoTexture, TexelSource};
 pub use span::{Lanes, LANES};
 pub use state::FbiState;
 pub use stats::{Kill, Stats};

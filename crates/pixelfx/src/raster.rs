@@ -7,10 +7,12 @@ use crate::fbi::Fbi;
 use crate::fbi::PathCounts;
 use crate::iter::Iterated;
 use crate::model::PixelModel;
+use crate::params::TriangleParams;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::StippleRotate;
 use crate::span::{
-    chunk_len, ChunkAt, ChunkJob, Lanes, Memory, Shader, TriangleConsts, Words, LANES,
+    chunk_len, ChunkAt, ChunkJob, Lanes, Memory, Packed, RowPlace, Shader, TriangleConsts, Words,
+    LANES, PACK,
 };
 use crate::stats::Stats;
 use crate::watch::NoStages;
@@ -52,32 +54,62 @@ pub trait TexelSource {
         self.texel(dx, dy, x, y)
     }
 
-    /// The texels of the live lanes of one chunk of a span ([`crate::span`]): lane `i`
-    /// is the pixel at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`; for each
-    /// `i < n` with `alive[i]`, its texel's R, G, B, A go to `out[0..4][i]`. Other lanes
-    /// of `out` are left as they are. This default asks [`TexelSource::texel`] for the
-    /// live lanes in order, as the reference path does; an override (the TMU chain's)
-    /// may compute a stage at a time over the lanes, as long as every texel, and any
-    /// state a later texel depends on, is what the default would give.
-    #[allow(clippy::too_many_arguments)]
+    /// The texels of the live lanes of one chunk ([`crate::span`]), each lane the pixel
+    /// `place` gives it: for each `i < n` with `alive[i]`, its texel's R, G, B, A go to
+    /// `out[0..4][i]`. Other lanes of `out` are left as they are. This default asks
+    /// [`TexelSource::texel`] for the live lanes in order, as the reference path does; an
+    /// override (the TMU chain's) may compute a stage at a time over the lanes, as long
+    /// as every texel, and any state a later texel depends on, is what the default would
+    /// give.
     #[inline(always)]
     fn texels(
         &mut self,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         out: &mut [Lanes; 4],
     ) {
         for i in 0..n.min(LANES) {
             if alive[i] {
-                let t = self.texel(dx0 + i as i32, dy, x0 + i as i32, y);
+                let (dx, dy, x, y) = place.at(i);
+                let t = self.texel(dx, dy, x, y);
                 out[0][i] = t.r as i32;
                 out[1][i] = t.g as i32;
                 out[2][i] = t.b as i32;
                 out[3][i] = t.a as i32;
+            }
+        }
+    }
+}
+
+/// Where the lanes of a chunk lie, as a [`TexelSource`] reads them: each lane's pixel
+/// offset from vertex A and its screen position. (`texelfx::LanePlace` is the same for
+/// the TMUs, which do not depend on this crate; the chain maps one to the other.)
+#[derive(Clone, Copy)]
+pub enum LanePlace<'a> {
+    /// One span: lane `i` at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`.
+    Row { dx0: i32, dy: i32, x0: i32, y: i32 },
+    /// Pixels of several spans of one triangle, in the order the walk visits them: lane
+    /// `i` at offset `(dx[i], dy[i])`, screen position `(x[i], y[i])`.
+    Lanes {
+        dx: &'a Lanes,
+        dy: &'a Lanes,
+        x: &'a Lanes,
+        y: &'a Lanes,
+    },
+}
+
+impl LanePlace<'_> {
+    /// Lane `i`'s `(dx, dy, x, y)`.
+    #[inline(always)]
+    pub fn at(&self, i: usize) -> (i32, i32, i32, i32) {
+        match *self {
+            LanePlace::Row { dx0, dy, x0, y } => {
+                (dx0.wrapping_add(i as i32), dy, x0.wrapping_add(i as i32), y)
+            }
+            LanePlace::Lanes { dx, dy, x, y } => {
+                let i = i % LANES;
+                (dx[i], dy[i], x[i], y[i])
             }
         }
     }
@@ -181,6 +213,9 @@ impl Fbi {
         // copy (stepped row by row), and a texel source that can be shared
         // ([`TexelSource::share`], asked once the triangle is known to be large).
         let threaded = SPANS && self.threads > 1 && copy.is_none();
+        // Short spans go into chunks packed from several spans (not with the per-triangle
+        // stipple copy, which is stepped span by span).
+        let mut pack = (SPANS && copy.is_none()).then(|| Pack::new(st));
         let mut rows = Vec::new();
         for span in setup::spans(&params, profile.edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);
@@ -213,7 +248,7 @@ impl Fbi {
             if threaded {
                 rows.push(row);
             } else {
-                self.shade_row::<M, T>(st, &row, a, &mut copy, tex, consts.as_ref());
+                self.shade_or_pack::<M, T>(st, &row, a, &mut copy, tex, consts.as_ref(), &mut pack);
             }
         }
         if threaded {
@@ -223,9 +258,74 @@ impl Fbi {
                 }
             }
             for row in &rows {
-                self.shade_row::<M, T>(st, row, a, &mut copy, tex, consts.as_ref());
+                self.shade_or_pack::<M, T>(st, row, a, &mut copy, tex, consts.as_ref(), &mut pack);
             }
         }
+        if let (Some(pack), Some(consts)) = (&mut pack, &consts) {
+            self.shade_pack::<M, T>(st, pack, tex, consts);
+        }
+    }
+
+    /// Shade `row` ([`Fbi::shade_row`]), or, where `pack` is given and the row can go in
+    /// a packed chunk ([`Pack::admits`]), add it to the pack, shading the pack first if
+    /// the row does not fit in it. A row that cannot be packed shades the pack first, so
+    /// that rows are shaded in the walk's order.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn shade_or_pack<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        row: &Row,
+        a: (i32, i32),
+        copy: &mut Option<box86::StippleCopy>,
+        tex: &mut T,
+        consts: Option<&TriangleConsts>,
+        pack: &mut Option<Pack>,
+    ) {
+        if let (Some(p), Some(c)) = (pack.as_mut(), consts) {
+            match p.admits(row, &self.fb) {
+                Admit::Now => return p.push(row, &self.params, a, self.fb.layout.row_pixels),
+                Admit::AfterShading => {
+                    self.shade_pack::<M, T>(st, p, tex, c);
+                    return p.push(row, &self.params, a, self.fb.layout.row_pixels);
+                }
+                Admit::Never => self.shade_pack::<M, T>(st, p, tex, c),
+            }
+        }
+        self.shade_row::<M, T>(st, row, a, copy, tex, consts);
+    }
+
+    /// Shade the rows in `pack` as one chunk and empty it.
+    fn shade_pack<M: PixelModel, T: TexelSource>(
+        &mut self,
+        st: &DrawState,
+        pack: &mut Pack,
+        tex: &mut T,
+        consts: &TriangleConsts,
+    ) {
+        if pack.lanes.n == 0 {
+            return;
+        }
+        self.path_counts.packed += pack.lanes.n as u64;
+        let mut stipple = st.stipple;
+        let mut shader = Shader {
+            stats: &mut self.stats,
+            counts: &mut self.path_counts,
+            dither: &self.dither,
+            fog_table: &self.fog_table,
+            params: &self.params,
+            profile: self.profile,
+        };
+        let job = ChunkJob {
+            st,
+            stipple_state: &mut stipple,
+            copy: None,
+            tex,
+            consts,
+            mem: &mut Memory::Whole(&mut self.fb.ram),
+        };
+        shader.shade_packed_of::<M, T>(job, &pack.lanes);
+        pack.clear();
     }
 
     /// Shade one row of a triangle, by chunks with the span kernels when `consts` is
@@ -290,17 +390,21 @@ impl Fbi {
                         params: &self.params,
                         profile: self.profile,
                     };
-                    shader.shade_chunk_of::<M, T>(ChunkJob {
-                        st,
+                    let place = RowPlace {
                         at: &at,
                         it: &it,
+                        params: &self.params,
+                        words: (dest_words, aux_words),
+                    };
+                    let job = ChunkJob {
+                        st,
                         stipple_state: &mut stipple,
                         copy: copy.as_ref(),
                         tex,
                         consts,
                         mem: &mut Memory::Whole(&mut self.fb.ram),
-                        words: (dest_words, aux_words),
-                    });
+                    };
+                    shader.shade_chunk_of::<M, T>(job, &place);
                 }
                 x0 += n as i32;
             }
@@ -480,6 +584,111 @@ struct Row {
     prow: i32,
 }
 
+/// Whether a row can join a [`Pack`].
+enum Admit {
+    /// As it is.
+    Now,
+    /// Once the pack's rows are shaded (it does not fit with them).
+    AfterShading,
+    /// Not at all: it is shaded by itself ([`Fbi::shade_row`]).
+    Never,
+}
+
+/// Short rows of one triangle gathered into one chunk of [`PACK`] lanes
+/// ([`crate::span::Packed`]), in the walk's order. A row joins only if every pixel of it
+/// has a word of its own in each buffer (the row lies in the frame buffer, within the
+/// row pitch, on a frame-buffer row no other row of the pack is on) and no lane's colour
+/// word can be another lane's aux word: then reading every lane's words before writing
+/// any gives what shading the rows one after the other gives.
+struct Pack {
+    lanes: Packed,
+    /// The rows' frame-buffer rows.
+    scry: [i32; PACK],
+    rows: usize,
+    /// The lanes' lowest and highest word offsets.
+    words: (usize, usize),
+}
+
+impl Pack {
+    fn new(st: &DrawState) -> Self {
+        Self {
+            lanes: Packed::new(st.dest, st.aux),
+            scry: [0; PACK],
+            rows: 0,
+            words: (usize::MAX, 0),
+        }
+    }
+
+    fn clear(&mut self) {
+        self.lanes.n = 0;
+        self.rows = 0;
+        self.words = (usize::MAX, 0);
+    }
+
+    /// Whether `row` can join (see [`Pack`]).
+    #[inline(always)]
+    fn admits(&self, row: &Row, fb: &crate::fb::FrameBuffer) -> Admit {
+        let len = (row.stop - row.start) as usize;
+        let pitch = fb.layout.row_pixels as usize;
+        if len > PACK || row.scry < 0 || row.start < 0 || row.stop as usize > pitch {
+            return Admit::Never;
+        }
+        let first = row.scry as usize * pitch + row.start as usize;
+        let last = first + len - 1;
+        let bases = [Some(self.lanes.colour_base), self.lanes.aux_base];
+        if bases.iter().flatten().any(|b| b + last >= fb.ram.len()) {
+            return Admit::Never;
+        }
+        // Colour and aux words meet only if the buffers are closer than the words span.
+        let apart = match self.lanes.aux_base {
+            Some(aux) => aux.abs_diff(self.lanes.colour_base),
+            None => usize::MAX,
+        };
+        let clear = |lo: usize, hi: usize| apart == 0 || apart > hi - lo;
+        if !clear(first, last) {
+            return Admit::Never;
+        }
+        let (lo, hi) = (self.words.0.min(first), self.words.1.max(last));
+        let on_a_row = self.scry[..self.rows].contains(&row.scry);
+        if self.lanes.n + len > PACK || on_a_row || !clear(lo, hi) {
+            return Admit::AfterShading;
+        }
+        Admit::Now
+    }
+
+    /// Add `row`'s pixels (admitted: [`Pack::admits`]) as lanes: `(ax, ay)` is vertex
+    /// A's pixel, `pitch` the frame buffer's row pitch in words.
+    #[inline(always)]
+    fn push(&mut self, row: &Row, params: &TriangleParams, (ax, ay): (i32, i32), pitch: u32) {
+        let dy = row.y - ay;
+        let it = Iterated::at(params, row.start - ax, dy);
+        let len = (row.stop - row.start) as usize;
+        let first = row.scry as usize * pitch as usize + row.start as usize;
+        let l = &mut self.lanes;
+        for k in 0..len {
+            let j = (l.n + k) % PACK;
+            let x = row.start + k as i32;
+            l.x[j] = x;
+            l.y[j] = row.y;
+            l.dx[j] = x - ax;
+            l.dy[j] = dy;
+            l.prow[j] = row.prow;
+            l.first[j] = k == 0;
+            l.word[j] = first + k;
+            let k = k as i32;
+            for c in 0..4 {
+                l.argb[c][j] = it.argb[c].wrapping_add(params.dx[c].wrapping_mul(k));
+            }
+            l.z[j] = it.z.wrapping_add(params.dzdx.wrapping_mul(k));
+            l.w[j] = it.w.wrapping_add(params.dwdx.wrapping_mul(i64::from(k)));
+        }
+        l.n += len;
+        self.words = (self.words.0.min(first), self.words.1.max(first + len - 1));
+        self.scry[self.rows % PACK] = row.scry;
+        self.rows += 1;
+    }
+}
+
 /// A row of a band with the frame-buffer rows it writes (empty where a buffer has none).
 struct BandRow<'m> {
     row: Row,
@@ -516,21 +725,24 @@ fn shade_band_rows<M: PixelModel, T: TexelSource>(
                 dy,
             };
             let it = Iterated::at(shader.params, x0 - ax, dy);
-            let words = (
-                Words::in_row(colour_len, x0, n),
-                Words::in_row(aux_len, x0, n),
-            );
-            shader.shade_chunk_of::<M, T>(ChunkJob {
-                st,
+            let place = RowPlace {
                 at: &at,
                 it: &it,
+                params: shader.params,
+                words: (
+                    Words::in_row(colour_len, x0, n),
+                    Words::in_row(aux_len, x0, n),
+                ),
+            };
+            let job = ChunkJob {
+                st,
                 stipple_state: &mut stipple,
                 copy: None,
                 tex,
                 consts,
                 mem: &mut memory,
-                words,
-            });
+            };
+            shader.shade_chunk_of::<M, T>(job, &place);
             x0 += n as i32;
         }
     }

@@ -24,7 +24,7 @@ use sst1_regs::{
     FbzColorPath, FbzMode, RgbSelect, Rgba,
 };
 
-use sst1_dither::Dither;
+use sst1_dither::{Dither, DitherKind};
 use sst1_fog::FogTable;
 
 use crate::fbi::{Fbi, PathCounts};
@@ -34,7 +34,7 @@ use crate::params::TriangleParams;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::PixelProfile;
 use crate::profile::{AlphaTestInput, AuxWrite, ZAlphaByte};
-use crate::raster::TexelSource;
+use crate::raster::{LanePlace, TexelSource};
 use crate::stats::Kill;
 use crate::stats::Stats;
 use crate::{blend, fog, stipple};
@@ -129,6 +129,299 @@ pub(crate) struct ChunkAt {
     pub dy: i32,
 }
 
+/// The lanes of a packed chunk ([`Packed`]): pixels of several short spans of one
+/// triangle in one chunk.
+pub const PACK: usize = 16;
+
+/// Which of a chunk's two buffers a word is in.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Buffer {
+    Colour,
+    Aux,
+}
+
+/// Where a chunk's `L` lanes lie: what the stages read of each lane's position (its
+/// column, pattern row, raw iterators, words) and nothing else, so that one kernel serves
+/// the lanes of one span ([`RowPlace`]) and those of several ([`Packed`]).
+pub(crate) trait Place<const L: usize> {
+    /// Lanes `0..n` hold pixels.
+    fn n(&self) -> usize;
+    /// Lane `i`'s screen column.
+    fn x(&self, i: usize) -> i32;
+    /// The row lane `i`'s dither and stipple patterns are indexed with.
+    fn prow(&self, i: usize) -> i32;
+    /// Whether lane `i` is the first pixel of a span: the rotating stipple restarts
+    /// there. (The walk restarts it for a chunk of one span.)
+    fn starts_span(&self, i: usize) -> bool;
+    /// The column 86Box's per-triangle stipple copy is indexed from (one span only).
+    fn span_start(&self) -> i32;
+    /// Lane `i`'s raw colour iterator `c` (12.12), Z (20.12) and W (32.32).
+    fn colour(&self, c: usize, i: usize) -> i32;
+    fn z(&self, i: usize) -> i32;
+    fn w(&self, i: usize) -> i64;
+    /// The lanes as the texel source takes them.
+    fn texel_place(&self) -> LanePlace<'_>;
+    /// The dither matrix entry of every lane, as [`Dither::matrix_value`] gives it.
+    fn dither_entries(&self, dither: &Dither, kind: DitherKind) -> [i32; L];
+    /// The lanes' words of `buffer` in `ram` as lanes (0 where a lane has none), and
+    /// which lanes have one.
+    fn load(&self, ram: &[u16], buffer: Buffer) -> ([i32; L], [bool; L]);
+    /// Write `values[i]` to the word of `buffer` of every live lane `i` that has one.
+    fn store(&self, ram: &mut [u16], buffer: Buffer, alive: &[bool; L], values: &[u16; L]);
+    /// `values` packed to RGB565 with the dither `kind`.
+    fn rgb565(&self, dither: &Dither, kind: DitherKind, rgb: [&[i32; L]; 3]) -> [u16; L];
+}
+
+/// The lanes of one chunk of one span: lane `i` is column `at.x0 + i`.
+pub(crate) struct RowPlace<'a> {
+    pub at: &'a ChunkAt,
+    /// The iterators at the chunk's first pixel.
+    pub it: &'a Iterated,
+    pub params: &'a TriangleParams,
+    /// The lanes' colour and aux words (checked not to cross: [`Words::crosses`]).
+    pub words: (Words, Words),
+}
+
+impl<const L: usize> Place<L> for RowPlace<'_> {
+    #[inline(always)]
+    fn n(&self) -> usize {
+        self.at.n
+    }
+
+    #[inline(always)]
+    fn x(&self, i: usize) -> i32 {
+        self.at.x0 + i as i32
+    }
+
+    #[inline(always)]
+    fn prow(&self, _i: usize) -> i32 {
+        self.at.prow
+    }
+
+    #[inline(always)]
+    fn starts_span(&self, _i: usize) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    fn span_start(&self) -> i32 {
+        self.at.span_start
+    }
+
+    #[inline(always)]
+    fn colour(&self, c: usize, i: usize) -> i32 {
+        self.it.argb[c].wrapping_add(self.params.dx[c].wrapping_mul(i as i32))
+    }
+
+    #[inline(always)]
+    fn z(&self, i: usize) -> i32 {
+        self.it
+            .z
+            .wrapping_add(self.params.dzdx.wrapping_mul(i as i32))
+    }
+
+    #[inline(always)]
+    fn w(&self, i: usize) -> i64 {
+        self.it
+            .w
+            .wrapping_add(self.params.dwdx.wrapping_mul(i as i64))
+    }
+
+    #[inline(always)]
+    fn texel_place(&self) -> LanePlace<'_> {
+        let at = self.at;
+        LanePlace::Row {
+            dx0: at.x0 - at.ax,
+            dy: at.dy,
+            x0: at.x0,
+            y: at.y,
+        }
+    }
+
+    #[inline(always)]
+    fn dither_entries(&self, dither: &Dither, kind: DitherKind) -> [i32; L] {
+        // The matrix repeats every 4 columns: its entries for the first four lanes, then
+        // spread over the lanes.
+        let mut row = [0i32; 4];
+        for (k, e) in row.iter_mut().enumerate() {
+            let x = (self.at.x0 + k as i32) as u32;
+            *e = dither.matrix_value(kind, x, self.at.prow as u32) as i32;
+        }
+        lanes(|i| row[i & 3])
+    }
+
+    #[inline(always)]
+    fn load(&self, ram: &[u16], buffer: Buffer) -> ([i32; L], [bool; L]) {
+        load_words(ram, self.words_of(buffer))
+    }
+
+    #[inline(always)]
+    fn store(&self, ram: &mut [u16], buffer: Buffer, alive: &[bool; L], values: &[u16; L]) {
+        store_alive(ram, self.words_of(buffer), alive, values)
+    }
+
+    #[inline(always)]
+    fn rgb565(&self, dither: &Dither, kind: DitherKind, rgb: [&[i32; L]; 3]) -> [u16; L] {
+        let mut packed = [0u16; L];
+        let (x0, prow) = (self.at.x0 as u32, self.at.prow as u32);
+        dither.rgb565_row(kind, x0, prow, rgb.map(|c| &c[..]), &mut packed);
+        packed
+    }
+}
+
+impl RowPlace<'_> {
+    #[inline(always)]
+    fn words_of(&self, buffer: Buffer) -> Words {
+        match buffer {
+            Buffer::Colour => self.words.0,
+            Buffer::Aux => self.words.1,
+        }
+    }
+}
+
+/// Pixels of several short spans of one triangle in one chunk of [`PACK`] lanes, in the
+/// order of the walk (built by `raster.rs`, which packs only spans whose every pixel has
+/// a word of its own in each buffer and no colour word of which is another lane's aux
+/// word, so that reading every lane's words before writing any gives what the walk's
+/// order gives).
+pub(crate) struct Packed {
+    pub n: usize,
+    /// Screen position, offset from vertex A's pixel (what the TMUs take).
+    pub x: Lanes,
+    pub y: Lanes,
+    pub dx: Lanes,
+    pub dy: Lanes,
+    pub prow: [i32; PACK],
+    pub first: [bool; PACK],
+    /// Word of the lane's pixel from a buffer's first word.
+    pub word: [usize; PACK],
+    /// First word of the colour buffer and of the aux buffer, if there is one.
+    pub colour_base: usize,
+    pub aux_base: Option<usize>,
+    /// Raw iterators.
+    pub argb: [[i32; PACK]; 4],
+    pub z: [i32; PACK],
+    pub w: [i64; PACK],
+}
+
+impl Packed {
+    pub(crate) fn new(colour_base: usize, aux_base: Option<usize>) -> Self {
+        Self {
+            n: 0,
+            x: [0; LANES],
+            y: [0; LANES],
+            dx: [0; LANES],
+            dy: [0; LANES],
+            prow: [0; PACK],
+            first: [false; PACK],
+            word: [0; PACK],
+            colour_base,
+            aux_base,
+            argb: [[0; PACK]; 4],
+            z: [0; PACK],
+            w: [0; PACK],
+        }
+    }
+
+    #[inline(always)]
+    fn base(&self, buffer: Buffer) -> Option<usize> {
+        match buffer {
+            Buffer::Colour => Some(self.colour_base),
+            Buffer::Aux => self.aux_base,
+        }
+    }
+}
+
+impl Place<PACK> for Packed {
+    #[inline(always)]
+    fn n(&self) -> usize {
+        self.n
+    }
+
+    #[inline(always)]
+    fn x(&self, i: usize) -> i32 {
+        self.x[i % LANES]
+    }
+
+    #[inline(always)]
+    fn prow(&self, i: usize) -> i32 {
+        self.prow[i % PACK]
+    }
+
+    #[inline(always)]
+    fn starts_span(&self, i: usize) -> bool {
+        self.first[i % PACK]
+    }
+
+    #[inline(always)]
+    fn span_start(&self) -> i32 {
+        // Never read: the walk packs no triangle that has the per-triangle copy.
+        self.x[0]
+    }
+
+    #[inline(always)]
+    fn colour(&self, c: usize, i: usize) -> i32 {
+        self.argb[c][i % PACK]
+    }
+
+    #[inline(always)]
+    fn z(&self, i: usize) -> i32 {
+        self.z[i % PACK]
+    }
+
+    #[inline(always)]
+    fn w(&self, i: usize) -> i64 {
+        self.w[i % PACK]
+    }
+
+    #[inline(always)]
+    fn texel_place(&self) -> LanePlace<'_> {
+        LanePlace::Lanes {
+            dx: &self.dx,
+            dy: &self.dy,
+            x: &self.x,
+            y: &self.y,
+        }
+    }
+
+    #[inline(always)]
+    fn dither_entries(&self, dither: &Dither, kind: DitherKind) -> [i32; PACK] {
+        lanes(|i| dither.matrix_value(kind, self.x[i] as u32, self.prow[i] as u32) as i32)
+    }
+
+    #[inline(always)]
+    fn load(&self, ram: &[u16], buffer: Buffer) -> ([i32; PACK], [bool; PACK]) {
+        let mut v = [0; PACK];
+        let mut has = [false; PACK];
+        if let Some(base) = self.base(buffer) {
+            for i in 0..self.n.min(PACK) {
+                v[i] = i32::from(ram[base + self.word[i]]);
+                has[i] = true;
+            }
+        }
+        (v, has)
+    }
+
+    #[inline(always)]
+    fn store(&self, ram: &mut [u16], buffer: Buffer, alive: &[bool; PACK], values: &[u16; PACK]) {
+        if let Some(base) = self.base(buffer) {
+            for i in 0..self.n.min(PACK) {
+                if alive[i] {
+                    ram[base + self.word[i]] = values[i];
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn rgb565(&self, dither: &Dither, kind: DitherKind, rgb: [&[i32; PACK]; 3]) -> [u16; PACK] {
+        let entries = self.dither_entries(dither, kind);
+        let mut packed = [0u16; PACK];
+        dither.rgb565_lanes(kind, &entries, rgb.map(|c| &c[..]), &mut packed);
+        packed
+    }
+}
+
 /// The three 8-bit channels and alpha of a colour for every lane.
 #[derive(Clone, Copy)]
 struct ColourLanes<const L: usize> {
@@ -187,6 +480,7 @@ pub(crate) struct TriangleConsts {
     st: DrawState,
     wide: std::sync::OnceLock<Box<TriangleLanes<LANES>>>,
     narrow: TriangleLanes<NARROW>,
+    packed: TriangleLanes<PACK>,
 }
 
 impl TriangleConsts {
@@ -195,7 +489,13 @@ impl TriangleConsts {
             st: *st,
             wide: std::sync::OnceLock::new(),
             narrow: TriangleLanes::new(st),
+            packed: TriangleLanes::new(st),
         }
+    }
+
+    #[inline(always)]
+    fn packed(&self) -> &TriangleLanes<PACK> {
+        &self.packed
     }
 
     #[inline(always)]
@@ -380,23 +680,18 @@ impl Memory<'_> {
     }
 }
 
-/// One chunk's work for [`Shader::shade_chunk_of`]: where it lies and what it reads and
-/// changes besides the shader's counters.
+/// One chunk's work for [`Shader::shade_chunk_of`] and [`Shader::shade_packed_of`]:
+/// what it reads and changes besides the shader's counters (where its lanes lie is
+/// given apart, as a [`Place`]).
 pub(crate) struct ChunkJob<'j, 'm, T> {
     pub st: &'j DrawState,
-    pub at: &'j ChunkAt,
-    /// The iterators at the chunk's first pixel.
-    pub it: &'j Iterated,
-    /// The row's rotating stipple register.
+    /// The rotating stipple register.
     pub stipple_state: &'j mut u32,
     /// 86Box's per-triangle stipple copy, as in the walker.
     pub copy: Option<&'j crate::box86::StippleCopy>,
     pub tex: &'j mut T,
     pub consts: &'j TriangleConsts,
     pub mem: &'j mut Memory<'m>,
-    /// The lanes' colour and aux words in `mem`; the caller has checked that they do not
-    /// cross ([`Words::crosses`]).
-    pub words: (Words, Words),
 }
 
 /// What the span kernels read and count besides the frame buffer: the FBI's tables and
@@ -420,14 +715,15 @@ impl Shader<'_> {
     pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource>(
         &mut self,
         job: ChunkJob<'_, '_, T>,
+        place: &RowPlace<'_>,
     ) {
         #[cfg(target_arch = "x86_64")]
         if M::AVX2 && std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe { self.shade_chunk_avx2::<M, T>(job) };
+            unsafe { self.shade_chunk_avx2::<M, T>(job, place) };
             return;
         }
-        self.shade_chunk_baseline::<M, T>(job);
+        self.shade_chunk_baseline::<M, T>(job, place);
     }
 
     /// [`Shader::shade_chunk_widths`] compiled with AVX2 enabled.
@@ -436,49 +732,102 @@ impl Shader<'_> {
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource>(&mut self, job: ChunkJob<'_, '_, T>) {
-        self.shade_chunk_widths::<M, T>(job);
+    unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource>(
+        &mut self,
+        job: ChunkJob<'_, '_, T>,
+        place: &RowPlace<'_>,
+    ) {
+        self.shade_chunk_widths::<M, T>(job, place);
     }
 
     /// [`Shader::shade_chunk_widths`] for the baseline target.
     #[inline(never)]
-    fn shade_chunk_baseline<M: PixelModel, T: TexelSource>(&mut self, job: ChunkJob<'_, '_, T>) {
-        self.shade_chunk_widths::<M, T>(job);
+    fn shade_chunk_baseline<M: PixelModel, T: TexelSource>(
+        &mut self,
+        job: ChunkJob<'_, '_, T>,
+        place: &RowPlace<'_>,
+    ) {
+        self.shade_chunk_widths::<M, T>(job, place);
     }
 
-    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `job.at.n` asks.
+    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `place.at.n` asks.
     #[inline(always)]
-    fn shade_chunk_widths<M: PixelModel, T: TexelSource>(&mut self, job: ChunkJob<'_, '_, T>) {
-        if job.at.n > NARROW {
+    fn shade_chunk_widths<M: PixelModel, T: TexelSource>(
+        &mut self,
+        job: ChunkJob<'_, '_, T>,
+        place: &RowPlace<'_>,
+    ) {
+        if place.at.n > NARROW {
             let lanes = job.consts.wide();
-            self.shade_chunk::<M, T, LANES>(job, lanes);
+            self.shade_chunk::<M, T, LANES, _>(job, place, lanes);
         } else {
             let lanes = &job.consts.narrow;
-            self.shade_chunk::<M, T, NARROW>(job, lanes);
+            self.shade_chunk::<M, T, NARROW, _>(job, place, lanes);
         }
     }
 
-    /// Shade one chunk of a span: every stage of [`Fbi::shade_pixel`], a stage at a time.
-    /// See [`ChunkJob`] for what it is given; `consts` are the
-    /// triangle's constants at this chunk's width.
-    #[inline(always)]
-    pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource, const L: usize>(
+    /// [`Shader::shade_chunk`] for a packed chunk ([`Packed`]), compiled for the best
+    /// vector instructions the CPU has, as [`Shader::shade_chunk_of`].
+    #[inline]
+    pub(crate) fn shade_packed_of<M: PixelModel, T: TexelSource>(
         &mut self,
         job: ChunkJob<'_, '_, T>,
+        place: &Packed,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if M::AVX2 && std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            unsafe { self.shade_packed_avx2::<M, T>(job, place) };
+            return;
+        }
+        self.shade_packed_baseline::<M, T>(job, place);
+    }
+
+    /// [`Shader::shade_packed_of`] compiled with AVX2 enabled.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn shade_packed_avx2<M: PixelModel, T: TexelSource>(
+        &mut self,
+        job: ChunkJob<'_, '_, T>,
+        place: &Packed,
+    ) {
+        let lanes = job.consts.packed();
+        self.shade_chunk::<M, T, PACK, _>(job, place, lanes);
+    }
+
+    /// [`Shader::shade_packed_of`] for the baseline target.
+    #[inline(never)]
+    fn shade_packed_baseline<M: PixelModel, T: TexelSource>(
+        &mut self,
+        job: ChunkJob<'_, '_, T>,
+        place: &Packed,
+    ) {
+        let lanes = job.consts.packed();
+        self.shade_chunk::<M, T, PACK, _>(job, place, lanes);
+    }
+
+    /// Shade one chunk: every stage of [`Fbi::shade_pixel`], a stage at a time, for the
+    /// lanes `place` lays out. See [`ChunkJob`] for what it is given; `consts` are the
+    /// triangle's constants at this chunk's width.
+    #[inline(always)]
+    pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource, const L: usize, P: Place<L>>(
+        &mut self,
+        job: ChunkJob<'_, '_, T>,
+        place: &P,
         consts: &TriangleLanes<L>,
     ) {
         let ChunkJob {
             st,
-            at,
-            it,
             stipple_state,
             copy,
             tex,
             mem,
-            words: (dest_words, aux_words),
             ..
         } = job;
-        let n = at.n;
+        let n = place.n();
         debug_assert!((1..=L).contains(&n) && L <= LANES);
         let mode = st.mode;
         self.counts.span_kernels += n as u64;
@@ -486,7 +835,6 @@ impl Shader<'_> {
         let cp = st.color_path;
         let am = st.alpha_mode;
         let fog_mode = st.fog_mode;
-        let p = self.params;
         let zero = &consts.zero;
         let mut alive = [false; L];
         alive[..n].fill(true);
@@ -495,11 +843,14 @@ impl Shader<'_> {
         if mode.enable_stipple() {
             let pattern = mode.enable_stipple_pattern();
             for (i, a) in alive.iter_mut().enumerate().take(n) {
-                let x = at.x0 + i as i32;
-                if let Some(c) = copy {
-                    *stipple_state = c.at((x - at.span_start) as usize);
+                let x = place.x(i);
+                if place.starts_span(i) {
+                    *stipple_state = st.stipple;
                 }
-                if !stipple::test(pattern, stipple_state, st.stipple, x, at.prow) {
+                if let Some(c) = copy {
+                    *stipple_state = c.at((x - place.span_start()) as usize);
+                }
+                if !stipple::test(pattern, stipple_state, st.stipple, x, place.prow(i)) {
                     *a = false;
                     self.stats.kill(Kill::Stipple);
                 }
@@ -508,9 +859,8 @@ impl Shader<'_> {
 
         // --- iterators, depth value and test ---
         let clamp = profile.iterator_clamp;
-        let z16: [i32; L] =
-            lanes(|i| clamp.z(it.z.wrapping_add(p.dzdx.wrapping_mul(i as i32))) as i32);
-        let w_at = |i: usize| it.w.wrapping_add(p.dwdx.wrapping_mul(i as i64));
+        let z16: [i32; L] = lanes(|i| clamp.z(place.z(i)) as i32);
+        let w_at = |i: usize| place.w(i);
         let wf: [i32; L] = if mode.wbuffer_select() || fog_mode.enable_fog() {
             lanes(|i| wfloat(w_at(i), profile.wfloat) as i32)
         } else {
@@ -534,15 +884,12 @@ impl Shader<'_> {
             });
             // Without an aux buffer only "never" can fail (MAME, DOSBox Staging).
             let no_aux_fails = func == DepthFunction::Never;
-            let mut fails = [no_aux_fails; L];
-            let w = aux_words;
-            let ram = &mem.aux()[w.first..w.first + (w.hi - w.lo)];
-            let pairs = source[w.lo..w.hi]
-                .iter()
-                .zip(ram)
-                .map(|(&s, &d)| (s, i32::from(d)));
-            compare_fails(func, pairs, &mut fails[w.lo..w.hi]);
-            kill_where(self.stats, &mut alive, n, Kill::DepthFunc, |i| fails[i]);
+            let (dst, has) = place.load(mem.aux(), Buffer::Aux);
+            let mut fails = [false; L];
+            compare_fails(func, source.iter().copied().zip(dst), &mut fails);
+            kill_where(self.stats, &mut alive, n, Kill::DepthFunc, |i| {
+                (fails[i] & has[i]) | (no_aux_fails & !has[i])
+            });
         }
 
         // --- colour selection ---
@@ -553,7 +900,7 @@ impl Shader<'_> {
             let mut wide_alive = [false; LANES];
             wide_alive[..L].copy_from_slice(&alive);
             let mut wide = [[0; LANES]; 4];
-            tex.texels(at.x0 - at.ax, at.dy, at.x0, at.y, &wide_alive, n, &mut wide);
+            tex.texels(place.texel_place(), &wide_alive, n, &mut wide);
             for (lanes, w) in t.c.iter_mut().zip(&wide) {
                 lanes.copy_from_slice(&w[..L]);
             }
@@ -566,9 +913,8 @@ impl Shader<'_> {
         // compiled for the baseline target, outside the AVX2 kernel.
         let mut iterated = ColourLanes::<L>::ZERO;
         for (c, lanes) in iterated.c.iter_mut().enumerate() {
-            let (s, d) = (it.argb[c], p.dx[c]);
             for (i, v) in lanes.iter_mut().enumerate() {
-                *v = clamp.colour(s.wrapping_add(d.wrapping_mul(i as i32))) as i32;
+                *v = clamp.colour(place.colour(c, i)) as i32;
             }
         }
         let (color0, color1) = (&consts.color0, &consts.color1);
@@ -694,18 +1040,9 @@ impl Shader<'_> {
         // --- alpha blend ---
         let blended: ColourLanes<L>;
         let out = if am.alpha_blend_enable() {
-            let (dst_rgb565, _) = load_words(mem.colour(), dest_words);
-            let (dst_aux, has_aux) = load_words(mem.aux(), aux_words);
-            // The matrix repeats every 4 columns: its entries for this row's first four
-            // lanes, then spread over the lanes.
-            let mut row = [0i32; 4];
-            for (k, e) in row.iter_mut().enumerate() {
-                let x = (at.x0 + k as i32) as u32;
-                *e = self
-                    .dither
-                    .matrix_value(st.dither_matrix, x, at.prow as u32) as i32;
-            }
-            let dither_value: [i32; L] = lanes(|i| row[i & 3]);
+            let (dst_rgb565, _) = place.load(mem.colour(), Buffer::Colour);
+            let (dst_aux, has_aux) = place.load(mem.aux(), Buffer::Aux);
+            let dither_value = place.dither_entries(self.dither, st.dither_matrix);
             let input = blend::BlendLanes {
                 src: &fogged.c,
                 prefog: &combined.c,
@@ -724,23 +1061,15 @@ impl Shader<'_> {
 
         // --- write ---
         if mode.rgb_buffer_mask() {
-            let w = dest_words;
-            let mut packed = [0u16; L];
-            self.dither.rgb565_row(
-                st.dither,
-                at.x0 as u32,
-                at.prow as u32,
-                [&out.c[0], &out.c[1], &out.c[2]],
-                &mut packed,
-            );
-            store_alive(mem.colour(), w, &alive, &packed);
+            let rgb = [&out.c[0], &out.c[1], &out.c[2]];
+            let packed = place.rgb565(self.dither, st.dither, rgb);
+            place.store(mem.colour(), Buffer::Colour, &alive, &packed);
         }
         if aux_enabled(mode, profile.aux_write) {
             let planes = mode.enable_alpha_planes();
-            let w = aux_words;
             let value = chosen(if planes { &out.c[3] } else { &depth });
             let value: [u16; L] = lanes(|i| value[i] as u16);
-            store_alive(mem.aux(), w, &alive, &value);
+            place.store(mem.aux(), Buffer::Aux, &alive, &value);
         }
         let out_count: u32 = alive[..n].iter().map(|a| *a as u32).sum();
         self.stats.pixels_out += u64::from(out_count);

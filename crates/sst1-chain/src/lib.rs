@@ -10,7 +10,8 @@ use pixelfx::span::{Lanes, LANES};
 use pixelfx::{TexelSource, TmuStage};
 use sst1_regs::Rgba;
 use texelfx::{
-    ChainModel, ColourLanes, LaneOutput, LaneScratch, TexelModel, Tmu, TmuPixel, ZERO_COLOUR,
+    ChainModel, ColourLanes, LaneOutput, LanePlace, LaneScratch, TexelModel, Tmu, TmuPixel,
+    ZERO_COLOUR,
 };
 
 // The FBI's chunks are the TMUs' lanes.
@@ -104,27 +105,24 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
     #[inline(always)]
     fn texels(
         &mut self,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: pixelfx::LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         out: &mut [Lanes; 4],
     ) {
+        let place = tmu_place(place);
         match self.tmus {
             [] => zero_live_lanes(alive, n, out),
             [t0, rest @ ..] if self.wiring == ChainModel::Box86 => {
-                box86_texels::<M>(t0, rest.first_mut(), (dx0, dy, x0, y), alive, n, out)
+                box86_texels::<M>(t0, rest.first_mut(), place, alive, n, out)
             }
             [t0, upstream @ ..] => {
                 // Upstream first: the last TMU sees zero, each output feeds the next down.
                 let mut other = &ZERO_COLOUR;
                 for t in upstream.iter_mut().rev() {
-                    other =
-                        t.texels_kept::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other));
+                    other = t.texels_kept::<M>(place, alive, n, LaneOutput::Combined(other));
                 }
-                t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other), out);
+                t0.texels::<M>(place, alive, n, LaneOutput::Combined(other), out);
             }
         }
     }
@@ -181,7 +179,13 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
         let mut alive = [false; LANES];
         alive[0] = true;
         let mut out = [[0; LANES]; 4];
-        self.texels(dx, dy, x, y, &alive, 1, &mut out);
+        let place = pixelfx::LanePlace::Row {
+            dx0: dx,
+            dy,
+            x0: x,
+            y,
+        };
+        self.texels(place, &alive, 1, &mut out);
         let ch = |c: usize| out[c][0] as u8;
         Rgba {
             r: ch(0),
@@ -196,14 +200,12 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
     #[inline(always)]
     fn texels(
         &mut self,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: pixelfx::LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         out: &mut [Lanes; 4],
     ) {
+        let place = tmu_place(place);
         let (Some((t0, upstream)), Some((s0, upstream_scratch))) =
             (self.tmus.split_first(), self.scratch.split_first_mut())
         else {
@@ -214,10 +216,10 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
         let mut other = &ZERO_COLOUR;
         for (t, s) in upstream.iter().zip(upstream_scratch.iter_mut()).rev() {
             let what = LaneOutput::Combined(other);
-            other = t.texels_kept_shared::<M>(s, dx0, dy, x0, y, alive, n, what);
+            other = t.texels_kept_shared::<M>(s, place, alive, n, what);
         }
         let what = LaneOutput::Combined(other);
-        t0.texels_shared::<M>(s0, dx0, dy, x0, y, alive, n, what, out);
+        t0.texels_shared::<M>(s0, place, alive, n, what, out);
     }
 }
 
@@ -309,22 +311,31 @@ fn stage(t: &Tmu, p: &TmuPixel) -> TmuStage {
     }
 }
 
+/// The FBI's description of a chunk's lanes as the TMUs take it (the same fields).
+#[inline(always)]
+fn tmu_place(place: pixelfx::LanePlace<'_>) -> LanePlace<'_> {
+    match place {
+        pixelfx::LanePlace::Row { dx0, dy, x0, y } => LanePlace::Row { dx0, dy, x0, y },
+        pixelfx::LanePlace::Lanes { dx, dy, x, y } => LanePlace::Lanes { dx, dy, x, y },
+    }
+}
+
 /// [`box86_texel`] for the live lanes of one chunk: the same choice, once per chunk.
 #[inline(always)]
 fn box86_texels<M: TexelModel>(
     t0: &mut Tmu,
     t1: Option<&mut Tmu>,
-    (dx0, dy, x0, y): (i32, i32, i32, i32),
+    place: LanePlace<'_>,
     alive: &[bool; LANES],
     n: usize,
     out: &mut ColourLanes,
 ) {
     match Box86Route::of(t0, t1) {
-        Box86Route::Alone(t) => t.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Texel, out),
+        Box86Route::Alone(t) => t.texels::<M>(place, alive, n, LaneOutput::Texel, out),
         Box86Route::Combined(t0, t1, mode) => {
             let upstream = LaneOutput::Box86Upstream(mode);
-            let other = t1.texels_kept::<M>(dx0, dy, x0, y, alive, n, upstream);
-            t0.texels::<M>(dx0, dy, x0, y, alive, n, LaneOutput::Combined(other), out);
+            let other = t1.texels_kept::<M>(place, alive, n, upstream);
+            t0.texels::<M>(place, alive, n, LaneOutput::Combined(other), out);
         }
     }
 }

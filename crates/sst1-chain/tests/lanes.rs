@@ -4,7 +4,7 @@
 //! gradients, chunks and live masks. Lanes that are not live are left alone.
 
 use pixelfx::span::{Lanes, LANES};
-use pixelfx::TexelSource;
+use pixelfx::{LanePlace, TexelSource};
 use sst1_chain::Chain;
 use sst1_regs::addr;
 use texelfx::{
@@ -116,18 +116,33 @@ fn chain_lanes_match_per_pixel_texels() {
                 let mut chain = Chain::<RuntimeProfile>::new(&mut tmus);
                 for chunk in 0..8 {
                     let n = 1 + rng.below(LANES as u32) as usize;
-                    let (dx0, dy) = (rng.signed(8), rng.signed(8));
-                    let (x0, y) = (rng.below(640) as i32, rng.below(480) as i32);
+                    let (dx0, dy0) = (rng.signed(8), rng.signed(8));
+                    let (x0, y0) = (rng.below(640) as i32, rng.below(480) as i32);
+                    // One span, or every lane on a row of its own (a packed chunk).
+                    let scattered: [Lanes; 4] =
+                        core::array::from_fn(|_| core::array::from_fn(|_| rng.signed(8)));
+                    let place = if chunk % 2 == 0 {
+                        LanePlace::Row {
+                            dx0,
+                            dy: dy0,
+                            x0,
+                            y: y0,
+                        }
+                    } else {
+                        let [dx, dy, x, y] = &scattered;
+                        LanePlace::Lanes { dx, dy, x, y }
+                    };
                     let alive: [bool; LANES] = core::array::from_fn(|_| rng.below(5) != 0);
                     let mut out: [Lanes; 4] = [[-1; LANES]; 4];
-                    chain.texels(dx0, dy, x0, y, &alive, n, &mut out);
+                    chain.texels(place, &alive, n, &mut out);
                     for i in 0..LANES {
                         let got = [0, 1, 2, 3].map(|c| out[c][i]);
                         if i >= n || !alive[i] {
                             assert_eq!(got, [-1; 4], "dead lane {i} written");
                             continue;
                         }
-                        let t = chain.texel(dx0 + i as i32, dy, x0 + i as i32, y);
+                        let (dx, dy, x, y) = place.at(i);
+                        let t = chain.texel(dx, dy, x, y);
                         let want = [t.r, t.g, t.b, t.a].map(i32::from);
                         assert_eq!(
                             got, want,

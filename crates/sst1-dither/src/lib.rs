@@ -110,6 +110,14 @@ fn dither_lane(r: i32, g: i32, b: i32, d: i32) -> u16 {
     (rb(r) << 11 | g6 << 5 | rb(b)) as u16
 }
 
+/// Dithering off: each channel truncated and packed to RGB565.
+#[inline(always)]
+fn truncate_lanes([r, g, b]: [&[i32]; 3], out: &mut [u16]) {
+    for (o, ((r, g), b)) in out.iter_mut().zip(r.iter().zip(g).zip(b)) {
+        *o = ((*r as u16 & 0xf8) << 8) | ((*g as u16 & 0xfc) << 3) | ((*b as u16 & 0xff) >> 3);
+    }
+}
+
 /// Tables for one matrix position: `[0]` red/blue (5-bit results), `[1]` green (6-bit).
 type Cell = [[u8; 256]; 2];
 
@@ -200,11 +208,7 @@ impl Dither {
         let n = out.len().min(r.len()).min(g.len()).min(b.len());
         let (out, r, g, b) = (&mut out[..n], &r[..n], &g[..n], &b[..n]);
         if kind == DitherKind::Off {
-            for (o, ((r, g), b)) in out.iter_mut().zip(r.iter().zip(g).zip(b)) {
-                *o = ((*r as u16 & 0xf8) << 8)
-                    | ((*g as u16 & 0xfc) << 3)
-                    | ((*b as u16 & 0xff) >> 3);
-            }
+            truncate_lanes([r, g, b], out);
             return;
         }
         // The entries for pixels x0 .. x0 + 8 (the pattern repeats every 4 columns).
@@ -232,6 +236,33 @@ impl Dither {
         for (i, o) in out_chunks.into_remainder().iter_mut().enumerate() {
             let j = done + i;
             *o = dither_lane(r[j], g[j], b[j], d[i]);
+        }
+    }
+
+    /// [`Dither::rgb565_row`] for pixels that need not share a row: pixel `i` is
+    /// dithered with matrix entry `entries[i]` (what [`Dither::matrix_value`] gives at its
+    /// position; ignored when dithering is off).
+    #[inline(always)]
+    pub fn rgb565_lanes(
+        &self,
+        kind: DitherKind,
+        entries: &[i32],
+        [r, g, b]: [&[i32]; 3],
+        out: &mut [u16],
+    ) {
+        let n = out
+            .len()
+            .min(r.len())
+            .min(g.len())
+            .min(b.len())
+            .min(entries.len());
+        let (out, r, g, b, d) = (&mut out[..n], &r[..n], &g[..n], &b[..n], &entries[..n]);
+        if kind == DitherKind::Off {
+            truncate_lanes([r, g, b], out);
+            return;
+        }
+        for i in 0..n {
+            out[i] = dither_lane(r[i], g[i], b[i], d[i]);
         }
     }
 
@@ -337,6 +368,36 @@ mod tests {
                 for i in 0..len {
                     let want = t.rgb565(kind, x0 + i as u32, y, r[i] as u8, g[i] as u8, b[i] as u8);
                     assert_eq!(out[i], want, "{m2:?} {kind:?} x0 {x0} y {y} lane {i}");
+                }
+            }
+        });
+    }
+
+    /// The conversion with an entry per pixel equals the per-pixel tables at scattered
+    /// positions, for every kind and matrix.
+    #[test]
+    fn lanes_equal_pixels() {
+        each_table_and_kind(|m2, t, kind| {
+            for seed in 0..64u32 {
+                let len = 1 + (seed as usize * 5) % 20;
+                let pos: Vec<(u32, u32)> = (0..len as u32)
+                    .map(|i| ((i * 7 + seed) % 13, (i * 3 + seed * 5) % 9))
+                    .collect();
+                let ch = |k: u32| -> Vec<i32> {
+                    (0..len as u32)
+                        .map(|i| ((i * 41 + seed * 97 + k * 61) % 300) as i32)
+                        .collect()
+                };
+                let (r, g, b) = (ch(0), ch(1), ch(2));
+                let entries: Vec<i32> = pos
+                    .iter()
+                    .map(|&(x, y)| i32::from(t.matrix_value(kind, x, y)))
+                    .collect();
+                let mut out = vec![0u16; len];
+                t.rgb565_lanes(kind, &entries, [&r, &g, &b], &mut out);
+                for (i, &(x, y)) in pos.iter().enumerate() {
+                    let want = t.rgb565(kind, x, y, r[i] as u8, g[i] as u8, b[i] as u8);
+                    assert_eq!(out[i], want, "{m2:?} {kind:?} ({x}, {y}) lane {i}");
                 }
             }
         });

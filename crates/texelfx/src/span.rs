@@ -54,6 +54,38 @@ pub type Lanes = [i32; LANES];
 /// R, G, B, A lanes, each 0..=255 where it counts.
 pub type ColourLanes = [Lanes; 4];
 
+/// Where the lanes of a chunk lie: each lane's pixel offset from vertex A (what S, T
+/// and W are iterated with) and its screen position (what the LOD dither reads).
+#[derive(Clone, Copy)]
+pub enum LanePlace<'a> {
+    /// One span: lane `i` at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`.
+    Row { dx0: i32, dy: i32, x0: i32, y: i32 },
+    /// Pixels of several spans of one triangle, in the order the walk visits them: lane
+    /// `i` at offset `(dx[i], dy[i])`, screen position `(x[i], y[i])`.
+    Lanes {
+        dx: &'a Lanes,
+        dy: &'a Lanes,
+        x: &'a Lanes,
+        y: &'a Lanes,
+    },
+}
+
+impl LanePlace<'_> {
+    /// Lane `i`'s `(dx, dy, x, y)`.
+    #[inline(always)]
+    pub fn at(&self, i: usize) -> (i32, i32, i32, i32) {
+        match *self {
+            LanePlace::Row { dx0, dy, x0, y } => {
+                (dx0.wrapping_add(i as i32), dy, x0.wrapping_add(i as i32), y)
+            }
+            LanePlace::Lanes { dx, dy, x, y } => {
+                let i = i % LANES;
+                (dx[i], dy[i], x[i], y[i])
+            }
+        }
+    }
+}
+
 /// What [`Tmu::texels`] computes for each lane.
 #[derive(Clone, Copy)]
 pub enum LaneOutput<'a> {
@@ -158,19 +190,15 @@ static ZERO: Lanes = [0; LANES];
 pub static ZERO_COLOUR: ColourLanes = [[0; LANES]; 4];
 
 impl Tmu {
-    /// The TMU's output for the live lanes of one chunk: lane `i` is the pixel at offset
-    /// `(dx0 + i, dy)` from vertex A, screen position `(x0 + i, y)` (as [`Tmu::texel`]
-    /// takes them). For each `i < n` with `alive[i]`, lane `i` of `out` gets what
+    /// The TMU's output for the live lanes of one chunk, each lane the pixel `place`
+    /// gives it (offset from vertex A and screen position, as [`Tmu::texel`] takes them). For each `i < n` with `alive[i]`, lane `i` of `out` gets what
     /// [`Tmu::texel`] (or the call `what` names) gives for that pixel, bit for bit; other
     /// lanes of `out` are left as they are.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn texels<M: TexelModel>(
         &mut self,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         what: LaneOutput<'_>,
@@ -182,14 +210,14 @@ impl Tmu {
         }
         if !self.cached && self.box86.lent.is_none() {
             // The generic path decodes from memory for every texel: per pixel.
-            self.texels_per_pixel::<M>(dx0, dy, x0, y, alive, n, what, out);
+            self.texels_per_pixel::<M>(place, alive, n, what, out);
             return;
         }
         if self.lut_stale {
             self.rebuild_lut();
         }
         let mut c = self.lanes.take().unwrap_or_else(Chunk::new);
-        let needed = self.lane_levels::<M>(dx0, dy, x0, y, alive, n, &mut c);
+        let needed = self.lane_levels::<M>(place, alive, n, &mut c);
         let mut missing = needed & !self.cache.valid();
         while missing != 0 {
             let lod = missing.trailing_zeros() as usize;
@@ -207,16 +235,13 @@ impl Tmu {
     #[inline(always)]
     fn lane_levels<M: TexelModel>(
         &self,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         c: &mut Chunk,
     ) -> u32 {
         let profile = M::texel(&self.profile);
-        self.iterate_lanes(dx0, dy, n, c);
+        self.iterate_lanes(place, n, c);
         // The approximations (module `approx`), read once per chunk; all off is exact.
         let approx = self.approx;
         coords_lanes(
@@ -230,7 +255,7 @@ impl Tmu {
         let lod_from = approx
             .lod_per_chunk
             .then(|| alive[..n].iter().position(|&a| a).unwrap_or(0));
-        self.lod_lanes::<M>(x0, y, n, lod_from, c);
+        self.lod_lanes::<M>(place, n, lod_from, c);
         if approx.point_sampling {
             // `textureMode`'s filter bits read as point sampling (what `Approx` says).
             c.point[..n].fill(1);
@@ -320,10 +345,7 @@ impl Tmu {
     #[inline(always)]
     pub fn texels_kept<M: TexelModel>(
         &mut self,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         what: LaneOutput<'_>,
@@ -332,7 +354,7 @@ impl Tmu {
             .kept
             .take()
             .unwrap_or_else(|| Box::new([[0; LANES]; 4]));
-        self.texels::<M>(dx0, dy, x0, y, alive, n, what, &mut kept);
+        self.texels::<M>(place, alive, n, what, &mut kept);
         self.kept.insert(kept)
     }
 
@@ -380,10 +402,7 @@ impl Tmu {
     pub fn texels_shared<M: TexelModel>(
         &self,
         scratch: &mut LaneScratch,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         what: LaneOutput<'_>,
@@ -396,7 +415,7 @@ impl Tmu {
             ..
         } = scratch;
         let lanes = (&mut **chunk, levels, valid);
-        self.texels_shared_in::<M>(lanes, dx0, dy, x0, y, alive, n, what, out);
+        self.texels_shared_in::<M>(lanes, place, alive, n, what, out);
     }
 
     /// [`Tmu::texels_shared`] with the parts of a [`LaneScratch`] but its kept lanes.
@@ -405,10 +424,7 @@ impl Tmu {
     fn texels_shared_in<M: TexelModel>(
         &self,
         (chunk, levels, valid): (&mut Chunk, &mut [Vec<u32>; 9], &mut u32),
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         what: LaneOutput<'_>,
@@ -418,7 +434,7 @@ impl Tmu {
         if !alive[..n].iter().any(|&a| a) {
             return;
         }
-        let needed = self.lane_levels::<M>(dx0, dy, x0, y, alive, n, chunk);
+        let needed = self.lane_levels::<M>(place, alive, n, chunk);
         let mut missing = needed & !self.cache.valid() & !*valid;
         while missing != 0 {
             let lod = missing.trailing_zeros() as usize;
@@ -445,10 +461,7 @@ impl Tmu {
     pub fn texels_kept_shared<'s, M: TexelModel>(
         &self,
         scratch: &'s mut LaneScratch,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         what: LaneOutput<'_>,
@@ -460,7 +473,7 @@ impl Tmu {
             valid,
         } = scratch;
         let lanes = (&mut **chunk, levels, valid);
-        self.texels_shared_in::<M>(lanes, dx0, dy, x0, y, alive, n, what, kept);
+        self.texels_shared_in::<M>(lanes, place, alive, n, what, kept);
         kept
     }
 
@@ -469,10 +482,7 @@ impl Tmu {
     #[cold]
     fn texels_per_pixel<M: TexelModel>(
         &mut self,
-        dx0: i32,
-        dy: i32,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         what: LaneOutput<'_>,
@@ -492,7 +502,7 @@ impl Tmu {
                 LaneOutput::Texel => Output::Texel,
                 LaneOutput::Box86Upstream(m) => Output::Box86Upstream(m),
             };
-            let (dx, x) = (dx0.wrapping_add(i as i32), x0.wrapping_add(i as i32));
+            let (dx, dy, x, y) = place.at(i);
             let v = self.output::<M>(dx, dy, x, y, what);
             out[0][i] = i32::from(v.r);
             out[1][i] = i32::from(v.g);
@@ -501,14 +511,23 @@ impl Tmu {
         }
     }
 
-    /// Stage 1: S, T, W of each lane, `start + dx * d/dx + dy * d/dy` mod 2^64 (the first
-    /// lane's value plus `i` steps: the same sum).
+    /// Stage 1: S, T, W of each lane, `start + dx * d/dx + dy * d/dy` mod 2^64 (along a
+    /// row, the first lane's value plus `i` steps: the same sum).
     #[inline(always)]
-    fn iterate_lanes(&self, dx0: i32, dy: i32, n: usize, c: &mut Chunk) {
+    fn iterate_lanes(&self, place: LanePlace<'_>, n: usize, c: &mut Chunk) {
         for (k, lanes) in [&mut c.s, &mut c.t, &mut c.w].into_iter().enumerate() {
-            let (v0, d) = (self.iterated(k, dx0, dy), self.ddx[k]);
-            for (i, v) in lanes[..n].iter_mut().enumerate() {
-                *v = v0.wrapping_add((i as i64).wrapping_mul(d));
+            match place {
+                LanePlace::Row { dx0, dy, .. } => {
+                    let (v0, d) = (self.iterated(k, dx0, dy), self.ddx[k]);
+                    for (i, v) in lanes[..n].iter_mut().enumerate() {
+                        *v = v0.wrapping_add((i as i64).wrapping_mul(d));
+                    }
+                }
+                LanePlace::Lanes { dx, dy, .. } => {
+                    for (i, v) in lanes[..n].iter_mut().enumerate() {
+                        *v = self.iterated(k, dx[i], dy[i]);
+                    }
+                }
             }
         }
     }
@@ -519,8 +538,7 @@ impl Tmu {
     #[inline(always)]
     fn lod_lanes<M: TexelModel>(
         &self,
-        x0: i32,
-        y: i32,
+        place: LanePlace<'_>,
         n: usize,
         lod_from: Option<usize>,
         c: &mut Chunk,
@@ -566,10 +584,20 @@ impl Tmu {
         }
         if mode.tloddither() && profile.lod_dither == LodDither::Matrix4x4 && !one_lod {
             // Source: MAME `fetch_texel`, DOSBox `TEXTURE_PIPELINE` (as `lod::pixel_lod`).
-            let row = &DITHER_4X4[(y & 3) as usize];
-            for (i, v) in lod[..n].iter_mut().enumerate() {
-                let x = x0.wrapping_add(i as i32);
-                *v = v.wrapping_add(i32::from(row[(x & 3) as usize]) << 4);
+            match place {
+                LanePlace::Row { x0, y, .. } => {
+                    let row = &DITHER_4X4[(y & 3) as usize];
+                    for (i, v) in lod[..n].iter_mut().enumerate() {
+                        let x = x0.wrapping_add(i as i32);
+                        *v = v.wrapping_add(i32::from(row[(x & 3) as usize]) << 4);
+                    }
+                }
+                LanePlace::Lanes { x, y, .. } => {
+                    for (i, v) in lod[..n].iter_mut().enumerate() {
+                        let d = DITHER_4X4[(y[i] & 3) as usize][(x[i] & 3) as usize];
+                        *v = v.wrapping_add(i32::from(d) << 4);
+                    }
+                }
             }
         }
         // A lodmin above lodmax gives lodmin (as `lod::pixel_lod`).

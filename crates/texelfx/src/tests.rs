@@ -962,8 +962,23 @@ fn span_lanes_match_per_pixel_texels() {
             for chunk in 0..6 {
                 let n = 1 + rng.below(LANES as u32) as usize;
                 let dx0 = rng.signed(9);
-                let dy = rng.signed(9);
-                let (x0, y) = (rng.below(1024) as i32, rng.below(1024) as i32);
+                let dy0 = rng.signed(9);
+                let (x0, y0) = (rng.below(1024) as i32, rng.below(1024) as i32);
+                // One span, or lanes each on a row of its own (as a chunk packed from
+                // several short spans has them).
+                let scattered: [Lanes; 4] =
+                    core::array::from_fn(|_| core::array::from_fn(|_| rng.signed(9)));
+                let place = if chunk % 2 == 0 {
+                    LanePlace::Row {
+                        dx0,
+                        dy: dy0,
+                        x0,
+                        y: y0,
+                    }
+                } else {
+                    let [dx, dy, x, y] = &scattered;
+                    LanePlace::Lanes { dx, dy, x, y }
+                };
                 let density = rng.below(4);
                 let alive: [bool; LANES] = core::array::from_fn(|_| rng.below(4) >= density);
                 let other: ColourLanes =
@@ -974,14 +989,14 @@ fn span_lanes_match_per_pixel_texels() {
                     _ => LaneOutput::Combined(&other),
                 };
                 let mut out: ColourLanes = [[-1; LANES]; 4];
-                tmu.texels::<R>(dx0, dy, x0, y, &alive, n, what, &mut out);
+                tmu.texels::<R>(place, &alive, n, what, &mut out);
                 for i in 0..LANES {
                     let got = [0, 1, 2, 3].map(|c| out[c][i]);
                     if i >= n || !alive[i] {
                         assert_eq!(got, [-1; 4], "dead lane {i} written");
                         continue;
                     }
-                    let (dx, x) = (dx0 + i as i32, x0 + i as i32);
+                    let (dx, dy, x, y) = place.at(i);
                     let want = match what {
                         LaneOutput::Texel => tmu.texel_uncombined::<R>(dx, dy, x, y),
                         LaneOutput::Box86Upstream(m) => {

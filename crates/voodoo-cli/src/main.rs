@@ -788,6 +788,7 @@ impl Stats {
             "shaded_by": {
                 "span_kernels": self.2.span_kernels,
                 "in_bands": self.2.in_bands,
+                "packed": self.2.packed,
                 "aliased_layout": self.2.aliased_layout,
                 "short_rows": self.2.short_rows,
                 "reference": self.2.reference,
@@ -910,9 +911,10 @@ fn replay(
             println!("swaps        {}", c.swaps);
             let paths = board.path_counts();
             println!(
-                "shaded by    span kernels {} ({} on render threads), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {})",
+                "shaded by    span kernels {} ({} on render threads, {} in chunks packed from short rows), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {})",
                 paths.span_kernels,
                 paths.in_bands,
+                paths.packed,
                 paths.short_rows + paths.aliased_layout + paths.reference,
                 paths.short_rows,
                 paths.aliased_layout,
