@@ -57,6 +57,9 @@ pub struct Fbi {
     pub(crate) threads: usize,
     /// The pixel whose history is recorded ([`Fbi::set_watch`]), if any.
     pub(crate) watch: Option<Box<crate::watch::PixelWatch>>,
+    /// The lanes of packed chunks, kept from triangle to triangle so that a triangle does
+    /// not build them anew (`crate::raster::Pack`; nothing in them outlives a triangle).
+    pub(crate) pack: Option<Box<crate::raster::Pack>>,
 }
 
 /// How many triangle pixels (inside the clip rectangle) each path shaded: what
@@ -109,6 +112,7 @@ impl Fbi {
             path_counts: PathCounts::default(),
             threads: 1,
             watch: None,
+            pack: None,
         }
     }
 

@@ -215,7 +215,11 @@ impl Fbi {
         let threaded = SPANS && self.threads > 1 && copy.is_none();
         // Short spans go into chunks packed from several spans (not with the per-triangle
         // stipple copy, which is stepped span by span).
-        let mut pack = (SPANS && copy.is_none()).then(|| Pack::new(st));
+        let mut pack = (SPANS && copy.is_none()).then(|| {
+            let mut p = self.pack.take().unwrap_or_else(|| Box::new(Pack::new()));
+            p.start(st);
+            p
+        });
         let mut rows = Vec::new();
         for span in setup::spans(&params, profile.edge_rounding) {
             let (mut start, mut stop) = (span.start, span.stop);
@@ -254,6 +258,8 @@ impl Fbi {
         if threaded {
             if let Some(consts) = &consts {
                 if self.shade_rows_threaded::<M, T>(st, &rows, a, consts, tex) {
+                    // Nothing was packed: the rows went to the bands.
+                    self.pack = pack.or(self.pack.take());
                     return;
                 }
             }
@@ -261,8 +267,11 @@ impl Fbi {
                 self.shade_or_pack::<M, T>(st, row, a, &mut copy, tex, consts.as_ref(), &mut pack);
             }
         }
-        if let (Some(pack), Some(consts)) = (&mut pack, &consts) {
-            self.shade_pack::<M, T>(st, pack, tex, consts);
+        if let (Some(p), Some(consts)) = (&mut pack, &consts) {
+            self.shade_pack::<M, T>(st, p, tex, consts);
+        }
+        if pack.is_some() {
+            self.pack = pack;
         }
     }
 
@@ -280,7 +289,7 @@ impl Fbi {
         copy: &mut Option<box86::StippleCopy>,
         tex: &mut T,
         consts: Option<&TriangleConsts>,
-        pack: &mut Option<Pack>,
+        pack: &mut Option<Box<Pack>>,
     ) {
         if let (Some(p), Some(c)) = (pack.as_mut(), consts) {
             match p.admits(row, &self.fb) {
@@ -600,7 +609,7 @@ enum Admit {
 /// row pitch, on a frame-buffer row no other row of the pack is on) and no lane's colour
 /// word can be another lane's aux word: then reading every lane's words before writing
 /// any gives what shading the rows one after the other gives.
-struct Pack {
+pub(crate) struct Pack {
     lanes: Packed,
     /// The rows' frame-buffer rows.
     scry: [i32; PACK],
@@ -610,13 +619,20 @@ struct Pack {
 }
 
 impl Pack {
-    fn new(st: &DrawState) -> Self {
+    fn new() -> Self {
         Self {
-            lanes: Packed::new(st.dest, st.aux),
+            lanes: Packed::new(0, None),
             scry: [0; PACK],
             rows: 0,
             words: (usize::MAX, 0),
         }
+    }
+
+    /// Empty, for a triangle drawn with `st`.
+    fn start(&mut self, st: &DrawState) {
+        self.lanes.colour_base = st.dest;
+        self.lanes.aux_base = st.aux;
+        self.clear();
     }
 
     fn clear(&mut self) {
