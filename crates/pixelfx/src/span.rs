@@ -155,9 +155,9 @@ pub(crate) trait Place<const L: usize> {
     fn starts_span(&self, i: usize) -> bool;
     /// The column 86Box's per-triangle stipple copy is indexed from (one span only).
     fn span_start(&self) -> i32;
-    /// Lane `i`'s raw colour iterator `c` (12.12), Z (20.12) and W (32.32).
-    fn colour(&self, c: usize, i: usize) -> i32;
-    fn z(&self, i: usize) -> i32;
+    /// Every lane's raw colour iterator `c` (12.12) and Z (20.12); lane `i`'s W (32.32).
+    fn colour(&self, c: usize) -> [i32; L];
+    fn z(&self) -> [i32; L];
     fn w(&self, i: usize) -> i64;
     /// The lanes as the texel source takes them.
     fn texel_place(&self) -> LanePlace<'_>;
@@ -166,6 +166,15 @@ pub(crate) trait Place<const L: usize> {
     /// The lanes' words of `buffer` in `ram` as lanes (0 where a lane has none), and
     /// which lanes have one.
     fn load(&self, ram: &[u16], buffer: Buffer) -> ([i32; L], [bool; L]);
+    /// The depth test of every lane against its aux word in `ram`: where
+    /// `func(source[i], word)` fails, and `no_aux` where the lane has no aux word.
+    fn depth_fails(
+        &self,
+        ram: &[u16],
+        func: CompareFunction,
+        source: &[i32; L],
+        no_aux: bool,
+    ) -> [bool; L];
     /// Write `values[i]` to the word of `buffer` of every live lane `i` that has one.
     fn store(&self, ram: &mut [u16], buffer: Buffer, alive: &[bool; L], values: &[u16; L]);
     /// `values` packed to RGB565 with the dither `kind`.
@@ -209,15 +218,15 @@ impl<const L: usize> Place<L> for RowPlace<'_> {
     }
 
     #[inline(always)]
-    fn colour(&self, c: usize, i: usize) -> i32 {
-        self.it.argb[c].wrapping_add(self.params.dx[c].wrapping_mul(i as i32))
+    fn colour(&self, c: usize) -> [i32; L] {
+        let (s, d) = (self.it.argb[c], self.params.dx[c]);
+        lanes(|i| s.wrapping_add(d.wrapping_mul(i as i32)))
     }
 
     #[inline(always)]
-    fn z(&self, i: usize) -> i32 {
-        self.it
-            .z
-            .wrapping_add(self.params.dzdx.wrapping_mul(i as i32))
+    fn z(&self) -> [i32; L] {
+        let (s, d) = (self.it.z, self.params.dzdx);
+        lanes(|i| s.wrapping_add(d.wrapping_mul(i as i32)))
     }
 
     #[inline(always)]
@@ -253,6 +262,26 @@ impl<const L: usize> Place<L> for RowPlace<'_> {
     #[inline(always)]
     fn load(&self, ram: &[u16], buffer: Buffer) -> ([i32; L], [bool; L]) {
         load_words(ram, self.words_of(buffer))
+    }
+
+    #[inline(always)]
+    fn depth_fails(
+        &self,
+        ram: &[u16],
+        func: CompareFunction,
+        source: &[i32; L],
+        no_aux: bool,
+    ) -> [bool; L] {
+        // Straight from the row's words: no copy of them first.
+        let mut fails = [no_aux; L];
+        let w = self.words.1;
+        let ram = &ram[w.first..w.first + (w.hi - w.lo)];
+        let pairs = source[w.lo..w.hi]
+            .iter()
+            .zip(ram)
+            .map(|(&s, &d)| (s, i32::from(d)));
+        compare_fails(func, pairs, &mut fails[w.lo..w.hi]);
+        fails
     }
 
     #[inline(always)]
@@ -360,13 +389,13 @@ impl Place<PACK> for Packed {
     }
 
     #[inline(always)]
-    fn colour(&self, c: usize, i: usize) -> i32 {
-        self.argb[c][i % PACK]
+    fn colour(&self, c: usize) -> [i32; PACK] {
+        self.argb[c]
     }
 
     #[inline(always)]
-    fn z(&self, i: usize) -> i32 {
-        self.z[i % PACK]
+    fn z(&self) -> [i32; PACK] {
+        self.z
     }
 
     #[inline(always)]
@@ -400,6 +429,20 @@ impl Place<PACK> for Packed {
             }
         }
         (v, has)
+    }
+
+    #[inline(always)]
+    fn depth_fails(
+        &self,
+        ram: &[u16],
+        func: CompareFunction,
+        source: &[i32; PACK],
+        no_aux: bool,
+    ) -> [bool; PACK] {
+        let (dst, has) = self.load(ram, Buffer::Aux);
+        let mut fails = [false; PACK];
+        compare_fails(func, source.iter().copied().zip(dst), &mut fails);
+        lanes(|i| (fails[i] & has[i]) | (no_aux & !has[i]))
     }
 
     #[inline(always)]
@@ -522,6 +565,10 @@ pub(crate) trait Lane: Copy {
 
 impl Lane for i32 {
     const ZERO: Self = 0;
+}
+
+impl Lane for bool {
+    const ZERO: Self = false;
 }
 
 impl Lane for u16 {
@@ -859,7 +906,8 @@ impl Shader<'_> {
 
         // --- iterators, depth value and test ---
         let clamp = profile.iterator_clamp;
-        let z16: [i32; L] = lanes(|i| clamp.z(place.z(i)) as i32);
+        let raw_z = place.z();
+        let z16: [i32; L] = lanes(|i| clamp.z(raw_z[i]) as i32);
         let w_at = |i: usize| place.w(i);
         let wf: [i32; L] = if mode.wbuffer_select() || fog_mode.enable_fog() {
             lanes(|i| wfloat(w_at(i), profile.wfloat) as i32)
@@ -884,12 +932,8 @@ impl Shader<'_> {
             });
             // Without an aux buffer only "never" can fail (MAME, DOSBox Staging).
             let no_aux_fails = func == DepthFunction::Never;
-            let (dst, has) = place.load(mem.aux(), Buffer::Aux);
-            let mut fails = [false; L];
-            compare_fails(func, source.iter().copied().zip(dst), &mut fails);
-            kill_where(self.stats, &mut alive, n, Kill::DepthFunc, |i| {
-                (fails[i] & has[i]) | (no_aux_fails & !has[i])
-            });
+            let fails = place.depth_fails(mem.aux(), func, source, no_aux_fails);
+            kill_where(self.stats, &mut alive, n, Kill::DepthFunc, |i| fails[i]);
         }
 
         // --- colour selection ---
@@ -913,8 +957,9 @@ impl Shader<'_> {
         // compiled for the baseline target, outside the AVX2 kernel.
         let mut iterated = ColourLanes::<L>::ZERO;
         for (c, lanes) in iterated.c.iter_mut().enumerate() {
-            for (i, v) in lanes.iter_mut().enumerate() {
-                *v = clamp.colour(place.colour(c, i)) as i32;
+            let raw = place.colour(c);
+            for (v, r) in lanes.iter_mut().zip(raw) {
+                *v = clamp.colour(r) as i32;
             }
         }
         let (color0, color1) = (&consts.color0, &consts.color1);
