@@ -212,7 +212,12 @@ impl Fbi {
         // Bands need rows that depend on nothing but themselves: no per-triangle stipple
         // copy (stepped row by row), and a texel source that can be shared
         // ([`TexelSource::share`], asked once the triangle is known to be large).
-        let threaded = SPANS && self.threads > 1 && copy.is_none();
+        // A triangle whose bounding box holds fewer pixels than the bands take is drawn
+        // on this thread without collecting its rows first.
+        let threaded = SPANS
+            && self.threads > 1
+            && copy.is_none()
+            && box_pixels(&params) >= MIN_THREADED_PIXELS as u64;
         // Short spans go into chunks packed from several spans (not with the per-triangle
         // stipple copy, which is stepped span by span).
         let mut pack = (SPANS && copy.is_none()).then(|| {
@@ -579,6 +584,17 @@ const BAND_ROWS: usize = 4;
 /// The fewest pixels a triangle must have for its rows to go to the render threads.
 const MIN_THREADED_PIXELS: usize = 4096;
 
+/// At least as many pixels as the triangle of `p` covers: its vertices' bounding box in
+/// whole pixels, with a pixel's margin on every side (each walk's spans lie between its
+/// vertices' coordinates, rounded to pixel boundaries).
+fn box_pixels(p: &TriangleParams) -> u64 {
+    let span = |a: i16, b: i16, c: i16| {
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        ((i32::from(hi) - i32::from(lo)) >> 4) as u64 + 3
+    };
+    span(p.ax, p.bx, p.cx) * span(p.ay, p.by, p.cy)
+}
+
 /// One row of a triangle after clipping: where its pixels are.
 #[derive(Clone, Copy, Debug)]
 struct Row {
@@ -768,3 +784,46 @@ fn shade_band_rows<M: PixelModel, T: TexelSource>(
 /// a chunk's fixed cost (its lanes, its words, its stage loops) is more than that of
 /// shading so few pixels one at a time. Both compute the same integers.
 const SHORT_ROW: i32 = 2;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::setup::EdgeRounding;
+
+    /// The bounding box never holds fewer pixels than a walk covers, for every walk, on
+    /// random triangles from slivers to the whole 12.4 range.
+    #[test]
+    fn box_pixels_bound_every_walk() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = |range: i32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 33) as i32 % range - range / 2
+        };
+        for k in 0..3000 {
+            let range = [64, 1024, 65536][k % 3];
+            let v: [i16; 6] = core::array::from_fn(|_| next(range) as i16);
+            let p = TriangleParams {
+                ax: v[0],
+                ay: v[1],
+                bx: v[2],
+                by: v[3],
+                cx: v[4],
+                cy: v[5],
+                right_to_left: k % 2 == 0,
+                ..Default::default()
+            };
+            for rounding in [
+                EdgeRounding::FloorHalfDown,
+                EdgeRounding::TruncHalfDown,
+                EdgeRounding::Box86Fixed,
+            ] {
+                let covered: u64 = setup::spans(&p, rounding)
+                    .map(|s| (s.stop - s.start) as u64)
+                    .sum();
+                assert!(covered <= box_pixels(&p), "{p:?} {rounding:?}: {covered}");
+            }
+        }
+    }
+}
