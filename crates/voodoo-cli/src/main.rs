@@ -254,6 +254,11 @@ enum Command {
         /// Print JSON (for tools) instead of text.
         #[arg(long)]
         json: bool,
+        /// Follow a pixel outside the dump (a row past its last, a column past its
+        /// width) as the buffer's word at that column and row: rows past a buffer's last
+        /// are the next buffer's first, which triangles drawn with clipping off reach.
+        #[arg(long)]
+        beyond_dump: bool,
     },
     /// Convert a trace between the text and binary forms, chosen by OUT's extension:
     /// `.vtrace` binary, `.vtrace.gz` gzip binary, `.gz` gzip text, anything else text.
@@ -450,7 +455,17 @@ fn main() -> ExitCode {
             dump,
             model,
             json,
-        } => why_command(&trace, x, y, dump, model.unwrap_or(Model::Hardware), json),
+            beyond_dump,
+        } => {
+            let req = why::Request {
+                trace: &trace,
+                x,
+                y,
+                dump,
+                beyond_dump,
+            };
+            why_command(&req, model.unwrap_or(Model::Hardware), json)
+        }
         Command::Gen {
             scene,
             seed,
@@ -1106,15 +1121,7 @@ fn reg(register: &str, value: &str) -> Result<(), String> {
 }
 
 /// `voodoo why`: the pixel's history on one model, or the references compared.
-fn why_command(
-    trace: &Path,
-    x: i32,
-    y: i32,
-    dump: Option<u64>,
-    model: Model,
-    json: bool,
-) -> Result<(), String> {
-    let req = why::Request { trace, x, y, dump };
+fn why_command(req: &why::Request<'_>, model: Model, json: bool) -> Result<(), String> {
     let text = match model.profile() {
         Some(profile) => {
             let name = match model {
@@ -1123,7 +1130,7 @@ fn why_command(
                 Model::Box86 => "86box",
                 _ => "hardware",
             };
-            let h = why::history(&req, name, profile)?;
+            let h = why::history(req, name, profile)?;
             if json {
                 serde_json::to_string_pretty(&h).map_err(|e| e.to_string())?
             } else {
@@ -1133,7 +1140,7 @@ fn why_command(
         None => {
             let histories = why::references()
                 .into_iter()
-                .map(|(name, profile)| why::history(&req, name, profile))
+                .map(|(name, profile)| why::history(req, name, profile))
                 .collect::<Result<Vec<_>, String>>()?;
             let c = why::compare(histories);
             if json {

@@ -82,10 +82,13 @@ pub struct DumpPoint {
     pub file: String,
     pub width: u32,
     pub height: u32,
-    /// The dump's value at the pixel.
+    /// The dump's value at the pixel; for a pixel outside the dump
+    /// ([`Request::beyond_dump`]), the buffer word's value when the dump was taken.
     pub value: u16,
     /// The frame-buffer word index of the pixel in that buffer.
     pub word: Option<usize>,
+    /// Whether the pixel lies inside the dump's rectangle.
+    pub inside: bool,
 }
 
 /// The last event that wrote the word the dump reads.
@@ -126,6 +129,10 @@ pub struct Request<'a> {
     pub y: i32,
     /// Dump number, from 1; `None`: the last.
     pub dump: Option<u64>,
+    /// Follow a pixel outside the dump's rectangle (a row past its last or a column past
+    /// its width) as the buffer's word at that column and row, which the dump does not
+    /// show (`voodoo why --beyond-dump`).
+    pub beyond_dump: bool,
 }
 
 /// The history of the pixel on a board with `profile` (model name `model`).
@@ -174,11 +181,14 @@ pub fn history(
                 last_size = (width, height);
                 let data = board.dump_buffer(buffer.kind());
                 let inside = (req.x as u32) < width && (req.y as u32) < height;
+                let word = board.buffer_word(buffer.kind(), req.x, req.y);
                 let value = if inside {
                     data[(req.y as u32 * width + req.x as u32) as usize]
                 } else {
-                    0
+                    word.map_or(0, |i| board.fbi().fb.ram[i])
                 };
+                // Beyond the dump, a pixel is followed where its buffer has the word.
+                let followed = inside || (req.beyond_dump && word.is_some());
                 let point = DumpPoint {
                     number: dumps_seen,
                     op: op_number,
@@ -187,15 +197,16 @@ pub fn history(
                     width,
                     height,
                     value,
-                    word: board.buffer_word(buffer.kind(), req.x, req.y),
+                    word,
+                    inside,
                 };
-                if req.dump == Some(dumps_seen) && !inside {
+                if req.dump == Some(dumps_seen) && !followed {
                     return Err(format!(
                         "pixel ({}, {}) is outside dump {dumps_seen} ({file}, {width}x{height})",
                         req.x, req.y
                     ));
                 }
-                at_dump = inside.then(|| (dropped + events.len() as u64, point));
+                at_dump = followed.then(|| (dropped + events.len() as u64, point));
                 if req.dump == Some(dumps_seen) {
                     break;
                 }
@@ -611,10 +622,17 @@ pub fn render(h: &History) -> String {
         }
     }
     if let Some(d) = &h.dump {
-        out += &format!(
-            "\ndump {} holds {:#06x} at ({}, {})",
-            d.number, d.value, h.x, h.y
-        );
+        out += &if d.inside {
+            format!(
+                "\ndump {} holds {:#06x} at ({}, {})",
+                d.number, d.value, h.x, h.y
+            )
+        } else {
+            format!(
+                "\ndump {} ({}x{}) does not show ({}, {}); the buffer's word there held {:#06x}",
+                d.number, d.width, d.height, h.x, h.y, d.value
+            )
+        };
         match &h.last_write {
             Some(w) if w.value == d.value => {
                 out += &format!(", written by op {} (the history agrees)\n", w.op)
@@ -767,6 +785,7 @@ mod tests {
             x,
             y,
             dump: None,
+            beyond_dump: false,
         };
         let h = history(&req, "hardware", AccuracyProfile::HARDWARE);
         std::fs::remove_file(&path).unwrap();

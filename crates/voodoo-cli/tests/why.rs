@@ -298,3 +298,66 @@ fn bad_input_is_refused_with_a_message() {
     assert_eq!(out.status.code(), Some(2));
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// The Glide init of [`HAND_BUILT`], then a triangle drawn with clipping off over rows
+/// 470 to 500 of the front buffer (`fbzMode` 0x200: RGB writes only), whose rows 480 and
+/// up are the first rows of the back buffer (the buffers are 150 pages, 480 rows, apart).
+const PAST_THE_LAST_ROW: &str = "config tmus 1\n\
+pci 0x40 0x3\n\
+w 0x000210 0x7\nw 0x000214 0x1a2\nw 0x000210 0x1\nw 0x000220 0x02c00060\n\
+w 0x000224 0x020b0002\nw 0x000208 0x00120032\nw 0x00020c 0x01e0027f\n\
+w 0x000218 0x1874b040\nw 0x00021c 0x77de4000\nw 0x000200 0x1\nw 0x000214 0x002000a2\n\
+w 0x000104 0x0\nw 0x000108 0x0\nw 0x00010c 0x0\nw 0x000110 0x200\n\
+w 0x000008 0x640\nw 0x00000c 0x1d60\nw 0x000010 0xc80\nw 0x000014 0x1d60\n\
+w 0x000018 0x960\nw 0x00001c 0x1f40\n\
+w 0x000020 0x64000\nw 0x000024 0x32000\nw 0x000028 0xc8000\nw 0x000030 0xff000\n\
+w 0x000080 0x0\n\
+dump front past_front.raw\n\
+dump back past_back.raw\n";
+
+#[test]
+fn beyond_dump_follows_rows_past_the_last() {
+    let dir = scratch("beyond");
+    std::fs::write(dir.join("past.trace"), PAST_THE_LAST_ROW).unwrap();
+    // Row 485 of the front buffer is row 5 of the back buffer.
+    let h = why_json(
+        &dir,
+        "past.trace",
+        150,
+        485,
+        &["--dump", "1", "--beyond-dump"],
+    );
+    let dump = &h["dump"];
+    assert_eq!(dump["inside"], false);
+    let back = replayed_value(&dir, "past.trace", "past_back.raw", 150, 5);
+    // startR/G/B 100, 50, 200 with the 4x4 dither off: 565 truncation.
+    assert_eq!(back, (100 >> 3) << 11 | (50 >> 2) << 5 | (200 >> 3));
+    assert_eq!(dump["value"], u64::from(back));
+    assert_eq!(h["last_write"]["value"], u64::from(back));
+    let events = h["events"].as_array().unwrap();
+    assert_eq!(events.len(), 1);
+    assert_eq!(events[0]["operation"]["Triangle"]["number"], 1);
+    // The text says the dump does not show the pixel, and what the word held.
+    let text = stdout(&voodoo(
+        &dir,
+        &[
+            "why",
+            "past.trace",
+            "150",
+            "485",
+            "--dump",
+            "1",
+            "--beyond-dump",
+        ],
+    ));
+    assert!(
+        text.contains(&format!(
+            "dump 1 (640x480) does not show (150, 485); the buffer's word there held {back:#06x}"
+        )),
+        "{text}"
+    );
+    // Without the flag the pixel is refused as before.
+    let out = voodoo(&dir, &["why", "past.trace", "150", "485", "--dump", "1"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("is outside dump 1"));
+}
