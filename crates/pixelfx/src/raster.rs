@@ -1,6 +1,7 @@
 //! Triangle rasterization: spans from [`crate::setup`], clipping, and the per-pixel walk
 //! with the iterators (spec 5.15 `triangleCMD`, 5.21 clip registers, 5.19 Y origin).
 
+pub use sst1_regs::LanePlace;
 use sst1_regs::Rgba;
 
 use crate::fbi::Fbi;
@@ -77,39 +78,6 @@ pub trait TexelSource {
                 out[1][i] = t.g as i32;
                 out[2][i] = t.b as i32;
                 out[3][i] = t.a as i32;
-            }
-        }
-    }
-}
-
-/// Where the lanes of a chunk lie, as a [`TexelSource`] reads them: each lane's pixel
-/// offset from vertex A and its screen position. (`texelfx::LanePlace` is the same for
-/// the TMUs, which do not depend on this crate; the chain maps one to the other.)
-#[derive(Clone, Copy)]
-pub enum LanePlace<'a> {
-    /// One span: lane `i` at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`.
-    Row { dx0: i32, dy: i32, x0: i32, y: i32 },
-    /// Pixels of several spans of one triangle, in the order the walk visits them: lane
-    /// `i` at offset `(dx[i], dy[i])`, screen position `(x[i], y[i])`.
-    Lanes {
-        dx: &'a Lanes,
-        dy: &'a Lanes,
-        x: &'a Lanes,
-        y: &'a Lanes,
-    },
-}
-
-impl LanePlace<'_> {
-    /// Lane `i`'s `(dx, dy, x, y)`.
-    #[inline(always)]
-    pub fn at(&self, i: usize) -> (i32, i32, i32, i32) {
-        match *self {
-            LanePlace::Row { dx0, dy, x0, y } => {
-                (dx0.wrapping_add(i as i32), dy, x0.wrapping_add(i as i32), y)
-            }
-            LanePlace::Lanes { dx, dy, x, y } => {
-                let i = i % LANES;
-                (dx[i], dy[i], x[i], y[i])
             }
         }
     }
@@ -309,6 +277,20 @@ impl Fbi {
         self.shade_row::<M, T>(st, row, a, copy, tex, consts);
     }
 
+    /// What the span kernels read and count of this FBI, and the frame buffer they write.
+    #[inline(always)]
+    fn shader_and_memory(&mut self) -> (Shader<'_>, Memory<'_>) {
+        let shader = Shader {
+            stats: &mut self.stats,
+            counts: &mut self.path_counts,
+            dither: &self.dither,
+            fog_table: &self.fog_table,
+            params: &self.params,
+            profile: self.profile,
+        };
+        (shader, Memory::Whole(&mut self.fb.ram))
+    }
+
     /// Shade the rows in `pack` as one chunk and empty it.
     fn shade_pack<M: PixelModel, T: TexelSource>(
         &mut self,
@@ -322,23 +304,16 @@ impl Fbi {
         }
         self.path_counts.packed += pack.lanes.n as u64;
         let mut stipple = st.stipple;
-        let mut shader = Shader {
-            stats: &mut self.stats,
-            counts: &mut self.path_counts,
-            dither: &self.dither,
-            fog_table: &self.fog_table,
-            params: &self.params,
-            profile: self.profile,
-        };
+        let (mut shader, mut mem) = self.shader_and_memory();
         let job = ChunkJob {
             st,
             stipple_state: &mut stipple,
             copy: None,
             tex,
             consts,
-            mem: &mut Memory::Whole(&mut self.fb.ram),
+            mem: &mut mem,
         };
-        shader.shade_packed_of::<M, T>(job, &pack.lanes);
+        shader.shade_chunk_of::<M, T, _>(job, &pack.lanes);
         pack.clear();
     }
 
@@ -396,18 +371,11 @@ impl Fbi {
                         tex,
                     );
                 } else {
-                    let mut shader = Shader {
-                        stats: &mut self.stats,
-                        counts: &mut self.path_counts,
-                        dither: &self.dither,
-                        fog_table: &self.fog_table,
-                        params: &self.params,
-                        profile: self.profile,
-                    };
+                    let (mut shader, mut mem) = self.shader_and_memory();
                     let place = RowPlace {
                         at: &at,
                         it: &it,
-                        params: &self.params,
+                        params: shader.params,
                         words: (dest_words, aux_words),
                     };
                     let job = ChunkJob {
@@ -416,9 +384,9 @@ impl Fbi {
                         copy: copy.as_ref(),
                         tex,
                         consts,
-                        mem: &mut Memory::Whole(&mut self.fb.ram),
+                        mem: &mut mem,
                     };
-                    shader.shade_chunk_of::<M, T>(job, &place);
+                    shader.shade_chunk_of::<M, T, _>(job, &place);
                 }
                 x0 += n as i32;
             }
@@ -774,7 +742,7 @@ fn shade_band_rows<M: PixelModel, T: TexelSource>(
                 consts,
                 mem: &mut memory,
             };
-            shader.shade_chunk_of::<M, T>(job, &place);
+            shader.shade_chunk_of::<M, T, _>(job, &place);
             x0 += n as i32;
         }
     }

@@ -39,11 +39,7 @@ use crate::stats::Kill;
 use crate::stats::Stats;
 use crate::{blend, fog, stipple};
 
-/// The most pixels one chunk holds.
-pub const LANES: usize = 64;
-
-/// One value per lane.
-pub type Lanes = [i32; LANES];
+pub use sst1_regs::lanes::{Lanes, LANES};
 
 /// The lanes `lo..hi` of a chunk whose words exist in one buffer, and the word index of
 /// lane `lo` (lane `i`'s word is `first + i - lo`).
@@ -727,7 +723,48 @@ impl Memory<'_> {
     }
 }
 
-/// One chunk's work for [`Shader::shade_chunk_of`] and [`Shader::shade_packed_of`]:
+/// A place whose lanes [`Shader::shade_chunk_of`] shades: the width and the triangle
+/// constants it is shaded with.
+pub(crate) trait ShadeChunk {
+    /// [`Shader::shade_chunk`] for these lanes.
+    fn shade<M: PixelModel, T: TexelSource>(
+        &self,
+        shader: &mut Shader<'_>,
+        job: ChunkJob<'_, '_, T>,
+    );
+}
+
+impl ShadeChunk for RowPlace<'_> {
+    /// A wide chunk or a narrow one, as `at.n` asks ([`chunk_len`]).
+    #[inline(always)]
+    fn shade<M: PixelModel, T: TexelSource>(
+        &self,
+        shader: &mut Shader<'_>,
+        job: ChunkJob<'_, '_, T>,
+    ) {
+        if self.at.n > NARROW {
+            let lanes = job.consts.wide();
+            shader.shade_chunk::<M, T, LANES, _>(job, self, lanes);
+        } else {
+            let lanes = &job.consts.narrow;
+            shader.shade_chunk::<M, T, NARROW, _>(job, self, lanes);
+        }
+    }
+}
+
+impl ShadeChunk for Packed {
+    #[inline(always)]
+    fn shade<M: PixelModel, T: TexelSource>(
+        &self,
+        shader: &mut Shader<'_>,
+        job: ChunkJob<'_, '_, T>,
+    ) {
+        let lanes = job.consts.packed();
+        shader.shade_chunk::<M, T, PACK, _>(job, self, lanes);
+    }
+}
+
+/// One chunk's work for [`Shader::shade_chunk_of`]:
 /// what it reads and changes besides the shader's counters (where its lanes lie is
 /// given apart, as a [`Place`]).
 pub(crate) struct ChunkJob<'j, 'm, T> {
@@ -754,106 +791,47 @@ pub(crate) struct Shader<'a> {
 }
 
 impl Shader<'_> {
-    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `job.at.n` asks
-    /// ([`chunk_len`]), compiled for the best vector instructions the CPU has: with AVX2
+    /// Shade one chunk ([`Shader::shade_chunk`] at the width its place asks:
+    /// [`ShadeChunk`]), compiled for the best vector instructions the CPU has: with AVX2
     /// where the model asks for it ([`PixelModel::AVX2`]) and the CPU has it (found at
     /// run time), for the baseline target otherwise. Both compute the same integers.
     #[inline]
-    pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource>(
+    pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource, C: ShadeChunk>(
         &mut self,
         job: ChunkJob<'_, '_, T>,
-        place: &RowPlace<'_>,
+        place: &C,
     ) {
         #[cfg(target_arch = "x86_64")]
         if M::AVX2 && std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe { self.shade_chunk_avx2::<M, T>(job, place) };
+            unsafe { self.shade_chunk_avx2::<M, T, C>(job, place) };
             return;
         }
-        self.shade_chunk_baseline::<M, T>(job, place);
+        self.shade_chunk_baseline::<M, T, C>(job, place);
     }
 
-    /// [`Shader::shade_chunk_widths`] compiled with AVX2 enabled.
+    /// [`ShadeChunk::shade`] compiled with AVX2 enabled.
     ///
     /// # Safety
     /// The CPU must have AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource>(
+    unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource, C: ShadeChunk>(
         &mut self,
         job: ChunkJob<'_, '_, T>,
-        place: &RowPlace<'_>,
+        place: &C,
     ) {
-        self.shade_chunk_widths::<M, T>(job, place);
+        place.shade::<M, T>(self, job);
     }
 
-    /// [`Shader::shade_chunk_widths`] for the baseline target.
+    /// [`ShadeChunk::shade`] for the baseline target.
     #[inline(never)]
-    fn shade_chunk_baseline<M: PixelModel, T: TexelSource>(
+    fn shade_chunk_baseline<M: PixelModel, T: TexelSource, C: ShadeChunk>(
         &mut self,
         job: ChunkJob<'_, '_, T>,
-        place: &RowPlace<'_>,
+        place: &C,
     ) {
-        self.shade_chunk_widths::<M, T>(job, place);
-    }
-
-    /// [`Shader::shade_chunk`] in a wide chunk or a narrow one, as `place.at.n` asks.
-    #[inline(always)]
-    fn shade_chunk_widths<M: PixelModel, T: TexelSource>(
-        &mut self,
-        job: ChunkJob<'_, '_, T>,
-        place: &RowPlace<'_>,
-    ) {
-        if place.at.n > NARROW {
-            let lanes = job.consts.wide();
-            self.shade_chunk::<M, T, LANES, _>(job, place, lanes);
-        } else {
-            let lanes = &job.consts.narrow;
-            self.shade_chunk::<M, T, NARROW, _>(job, place, lanes);
-        }
-    }
-
-    /// [`Shader::shade_chunk`] for a packed chunk ([`Packed`]), compiled for the best
-    /// vector instructions the CPU has, as [`Shader::shade_chunk_of`].
-    #[inline]
-    pub(crate) fn shade_packed_of<M: PixelModel, T: TexelSource>(
-        &mut self,
-        job: ChunkJob<'_, '_, T>,
-        place: &Packed,
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        if M::AVX2 && std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe { self.shade_packed_avx2::<M, T>(job, place) };
-            return;
-        }
-        self.shade_packed_baseline::<M, T>(job, place);
-    }
-
-    /// [`Shader::shade_packed_of`] compiled with AVX2 enabled.
-    ///
-    /// # Safety
-    /// The CPU must have AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn shade_packed_avx2<M: PixelModel, T: TexelSource>(
-        &mut self,
-        job: ChunkJob<'_, '_, T>,
-        place: &Packed,
-    ) {
-        let lanes = job.consts.packed();
-        self.shade_chunk::<M, T, PACK, _>(job, place, lanes);
-    }
-
-    /// [`Shader::shade_packed_of`] for the baseline target.
-    #[inline(never)]
-    fn shade_packed_baseline<M: PixelModel, T: TexelSource>(
-        &mut self,
-        job: ChunkJob<'_, '_, T>,
-        place: &Packed,
-    ) {
-        let lanes = job.consts.packed();
-        self.shade_chunk::<M, T, PACK, _>(job, place, lanes);
+        place.shade::<M, T>(self, job);
     }
 
     /// Shade one chunk: every stage of [`Fbi::shade_pixel`], a stage at a time, for the

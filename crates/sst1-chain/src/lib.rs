@@ -14,9 +14,6 @@ use texelfx::{
     ZERO_COLOUR,
 };
 
-// The FBI's chunks are the TMUs' lanes.
-const _: () = assert!(LANES == texelfx::LANES);
-
 /// The TMUs taking part in a triangle, upstream last, run by model `M`.
 pub struct Chain<'a, M> {
     tmus: &'a mut [Tmu],
@@ -105,12 +102,11 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
     #[inline(always)]
     fn texels(
         &mut self,
-        place: pixelfx::LanePlace<'_>,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         out: &mut [Lanes; 4],
     ) {
-        let place = tmu_place(place);
         match self.tmus {
             [] => zero_live_lanes(alive, n, out),
             [t0, rest @ ..] if self.wiring == ChainModel::Box86 => {
@@ -179,7 +175,7 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
         let mut alive = [false; LANES];
         alive[0] = true;
         let mut out = [[0; LANES]; 4];
-        let place = pixelfx::LanePlace::Row {
+        let place = LanePlace::Row {
             dx0: dx,
             dy,
             x0: x,
@@ -200,12 +196,11 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
     #[inline(always)]
     fn texels(
         &mut self,
-        place: pixelfx::LanePlace<'_>,
+        place: LanePlace<'_>,
         alive: &[bool; LANES],
         n: usize,
         out: &mut [Lanes; 4],
     ) {
-        let place = tmu_place(place);
         let (Some((t0, upstream)), Some((s0, upstream_scratch))) =
             (self.tmus.split_first(), self.scratch.split_first_mut())
         else {
@@ -308,15 +303,6 @@ fn stage(t: &Tmu, p: &TmuPixel) -> TmuStage {
         lod_fraction: p.lod_fraction,
         texel: p.texel.into(),
         output: p.output.into(),
-    }
-}
-
-/// The FBI's description of a chunk's lanes as the TMUs take it (the same fields).
-#[inline(always)]
-fn tmu_place(place: pixelfx::LanePlace<'_>) -> LanePlace<'_> {
-    match place {
-        pixelfx::LanePlace::Row { dx0, dy, x0, y } => LanePlace::Row { dx0, dy, x0, y },
-        pixelfx::LanePlace::Lanes { dx, dy, x, y } => LanePlace::Lanes { dx, dy, x, y },
     }
 }
 

@@ -5,6 +5,7 @@
 //!
 //! * [`addr`]: the byte offset of every register in the (non-remapped) register map.
 //! * [`color`]: the 8-bit-per-channel colour value passed between pipeline stages.
+//! * [`lanes`]: the lanes of a span-kernel chunk, which both chips' kernels share.
 //! * [`map`]: the register table in spec order ([`map::REGISTERS`]), name lookup,
 //!   the triangle-register remap and [`map::decode`] for dumps and logs.
 //! * [`types`] (re-exported here): one typed, self-describing view per mode register
@@ -15,10 +16,12 @@
 pub mod addr;
 pub mod color;
 pub mod float;
+pub mod lanes;
 pub mod map;
 pub mod types;
 
 pub use color::Rgba;
+pub use lanes::{LanePlace, Lanes, LANES};
 pub use types::*;
 
 /// The 16 MiB PCI memory aperture of an SST-1 board, as a driver (or a trace) sees it.

@@ -44,47 +44,10 @@ use crate::{
     PerspDivide, TexelModel, Tmu, Trilinear,
 };
 
-/// Lanes of one chunk; the FBI's span kernels use the same width (`pixelfx::span::LANES`,
-/// checked where the chain joins the two).
-pub const LANES: usize = 64;
-
-/// One value per lane.
-pub type Lanes = [i32; LANES];
+pub use sst1_regs::lanes::{LanePlace, Lanes, LANES};
 
 /// R, G, B, A lanes, each 0..=255 where it counts.
 pub type ColourLanes = [Lanes; 4];
-
-/// Where the lanes of a chunk lie: each lane's pixel offset from vertex A (what S, T
-/// and W are iterated with) and its screen position (what the LOD dither reads).
-#[derive(Clone, Copy)]
-pub enum LanePlace<'a> {
-    /// One span: lane `i` at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`.
-    Row { dx0: i32, dy: i32, x0: i32, y: i32 },
-    /// Pixels of several spans of one triangle, in the order the walk visits them: lane
-    /// `i` at offset `(dx[i], dy[i])`, screen position `(x[i], y[i])`.
-    Lanes {
-        dx: &'a Lanes,
-        dy: &'a Lanes,
-        x: &'a Lanes,
-        y: &'a Lanes,
-    },
-}
-
-impl LanePlace<'_> {
-    /// Lane `i`'s `(dx, dy, x, y)`.
-    #[inline(always)]
-    pub fn at(&self, i: usize) -> (i32, i32, i32, i32) {
-        match *self {
-            LanePlace::Row { dx0, dy, x0, y } => {
-                (dx0.wrapping_add(i as i32), dy, x0.wrapping_add(i as i32), y)
-            }
-            LanePlace::Lanes { dx, dy, x, y } => {
-                let i = i % LANES;
-                (dx[i], dy[i], x[i], y[i])
-            }
-        }
-    }
-}
 
 /// What [`Tmu::texels`] computes for each lane.
 #[derive(Clone, Copy)]

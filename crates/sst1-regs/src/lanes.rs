@@ -1,0 +1,42 @@
+//! The lanes of a span-kernel chunk, shared by the FBI's kernels (`pixelfx::span`) and
+//! the TMUs' (`texelfx::span`): up to [`LANES`] pixels a chunk, one value per lane, and
+//! where each lane's pixel lies ([`LanePlace`]). Not a register: a shape both chips'
+//! kernels agree on, kept here because both crates read this one and neither the other.
+
+/// The most pixels one chunk holds.
+pub const LANES: usize = 64;
+
+/// One value per lane.
+pub type Lanes = [i32; LANES];
+
+/// Where the lanes of a chunk lie: each lane's pixel offset from vertex A (what the
+/// iterators are stepped by) and its screen position (what the dither matrices read).
+#[derive(Clone, Copy, Debug)]
+pub enum LanePlace<'a> {
+    /// One span: lane `i` at offset `(dx0 + i, dy)`, screen position `(x0 + i, y)`.
+    Row { dx0: i32, dy: i32, x0: i32, y: i32 },
+    /// Pixels of several spans of one triangle, in the order the walk visits them: lane
+    /// `i` at offset `(dx[i], dy[i])`, screen position `(x[i], y[i])`.
+    Lanes {
+        dx: &'a Lanes,
+        dy: &'a Lanes,
+        x: &'a Lanes,
+        y: &'a Lanes,
+    },
+}
+
+impl LanePlace<'_> {
+    /// Lane `i`'s `(dx, dy, x, y)`.
+    #[inline(always)]
+    pub fn at(&self, i: usize) -> (i32, i32, i32, i32) {
+        match *self {
+            LanePlace::Row { dx0, dy, x0, y } => {
+                (dx0.wrapping_add(i as i32), dy, x0.wrapping_add(i as i32), y)
+            }
+            LanePlace::Lanes { dx, dy, x, y } => {
+                let i = i % LANES;
+                (dx[i], dy[i], x[i], y[i])
+            }
+        }
+    }
+}
