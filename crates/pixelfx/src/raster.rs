@@ -228,14 +228,11 @@ impl Fbi {
                 self.shade_or_pack::<M, T>(st, &row, a, &mut copy, tex, consts.as_ref(), &mut pack);
             }
         }
-        if threaded {
-            if let Some(consts) = &consts {
-                if self.shade_rows_threaded::<M, T>(st, &rows, a, consts, tex) {
-                    // Nothing was packed: the rows went to the bands.
-                    self.pack = pack.or(self.pack.take());
-                    return;
-                }
-            }
+        let banded = threaded
+            && consts
+                .as_ref()
+                .is_some_and(|c| self.shade_rows_threaded::<M, T>(st, &rows, a, c, tex));
+        if threaded && !banded {
             for row in &rows {
                 self.shade_or_pack::<M, T>(st, row, a, &mut copy, tex, consts.as_ref(), &mut pack);
             }
@@ -605,7 +602,7 @@ pub(crate) struct Pack {
 impl Pack {
     fn new() -> Self {
         Self {
-            lanes: Packed::new(0, None),
+            lanes: Packed::new(),
             scry: [0; PACK],
             rows: 0,
             words: (usize::MAX, 0),

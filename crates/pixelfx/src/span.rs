@@ -330,7 +330,8 @@ pub(crate) struct Packed {
 }
 
 impl Packed {
-    pub(crate) fn new(colour_base: usize, aux_base: Option<usize>) -> Self {
+    /// Empty lanes; the buffers are set per triangle.
+    pub(crate) fn new() -> Self {
         Self {
             n: 0,
             x: [0; LANES],
@@ -340,8 +341,8 @@ impl Packed {
             prow: [0; PACK],
             first: [false; PACK],
             word: [0; PACK],
-            colour_base,
-            aux_base,
+            colour_base: 0,
+            aux_base: None,
             argb: [[0; PACK]; 4],
             z: [0; PACK],
             w: [0; PACK],
@@ -530,11 +531,6 @@ impl TriangleConsts {
             narrow: TriangleLanes::new(st),
             packed: TriangleLanes::new(st),
         }
-    }
-
-    #[inline(always)]
-    fn packed(&self) -> &TriangleLanes<PACK> {
-        &self.packed
     }
 
     #[inline(always)]
@@ -759,7 +755,7 @@ impl ShadeChunk for Packed {
         shader: &mut Shader<'_>,
         job: ChunkJob<'_, '_, T>,
     ) {
-        let lanes = job.consts.packed();
+        let lanes = &job.consts.packed;
         shader.shade_chunk::<M, T, PACK, _>(job, self, lanes);
     }
 }

@@ -154,10 +154,10 @@ pub static ZERO_COLOUR: ColourLanes = [[0; LANES]; 4];
 
 impl Tmu {
     /// The TMU's output for the live lanes of one chunk, each lane the pixel `place`
-    /// gives it (offset from vertex A and screen position, as [`Tmu::texel`] takes them). For each `i < n` with `alive[i]`, lane `i` of `out` gets what
+    /// gives it (offset from vertex A and screen position, as [`Tmu::texel`] takes
+    /// them). For each `i < n` with `alive[i]`, lane `i` of `out` gets what
     /// [`Tmu::texel`] (or the call `what` names) gives for that pixel, bit for bit; other
     /// lanes of `out` are left as they are.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn texels<M: TexelModel>(
         &mut self,
@@ -194,7 +194,6 @@ impl Tmu {
 
     /// Stages 1 to 3 of [`Tmu::texels`] for the live lanes of a chunk; returns the levels
     /// they sample (bit n for LOD n).
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn lane_levels<M: TexelModel>(
         &self,
@@ -234,7 +233,6 @@ impl Tmu {
 
     /// Stages 4 and 5 of [`Tmu::texels`]: the texels of the live lanes from the decoded
     /// levels `level(lod)` (every level in `needed` decoded), filtered and combined.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn texels_from<'l, M: TexelModel>(
         &self,
@@ -304,7 +302,6 @@ impl Tmu {
     /// [`Tmu::texels`] into lanes the TMU keeps, for the next TMU of the chain to read as
     /// its `other` lanes: the live lanes as [`Tmu::texels`] gives them, the others
     /// anything in 0..=255.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn texels_kept<M: TexelModel>(
         &mut self,
@@ -360,7 +357,6 @@ impl Tmu {
     /// returned `true` (and nothing changed the TMU since): the same lanes bit for bit,
     /// with the chunk's lanes in `scratch` (one per thread) and a level missing from the
     /// cache decoded into `scratch`.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn texels_shared<M: TexelModel>(
         &self,
@@ -382,7 +378,6 @@ impl Tmu {
     }
 
     /// [`Tmu::texels_shared`] with the parts of a [`LaneScratch`] but its kept lanes.
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn texels_shared_in<M: TexelModel>(
         &self,
@@ -419,7 +414,6 @@ impl Tmu {
 
     /// [`Tmu::texels_shared`] into `scratch`'s kept lanes, for the next TMU down the
     /// chain (as [`Tmu::texels_kept`]).
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn texels_kept_shared<'s, M: TexelModel>(
         &self,
@@ -441,7 +435,6 @@ impl Tmu {
     }
 
     /// [`Tmu::texels`] one pixel at a time through [`Tmu::output`].
-    #[allow(clippy::too_many_arguments)]
     #[cold]
     fn texels_per_pixel<M: TexelModel>(
         &mut self,
