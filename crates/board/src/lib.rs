@@ -30,7 +30,7 @@ pub use diagnostics::{Diagnostic, Diagnostics};
 pub use method::Method;
 pub use model::Model;
 pub use pixelfx::watch;
-pub use pixelfx::{Kill, PathCounts, PixelProfile, Stats};
+pub use pixelfx::{Kill, PathCounts, PixelProfile, Stats, VectorIsa};
 pub use reference::{vote, Reference};
 pub use state::{StateError, StateInfo};
 pub use texelfx::{TexelProfile, Tmu};
@@ -219,6 +219,31 @@ impl Board {
     /// states are the same for every count; only [`Board::path_counts`] says it.
     pub fn set_threads(&mut self, threads: usize) {
         self.fbi.set_threads(threads);
+    }
+
+    /// Run the copy of the span kernels compiled for `cap` (`pixelfx::isa`), or the best
+    /// the CPU has below it; returns the copy that will run. Every copy gives the same
+    /// pixels, counters and cycles; a board starts with the best the CPU has. Only the
+    /// hardware model has the vector copies; the others run the baseline one whatever
+    /// is set here.
+    pub fn set_vector_isa(&mut self, cap: VectorIsa) -> VectorIsa {
+        self.fbi.set_vector_isa(cap)
+    }
+
+    /// The copy of the span kernels set with [`Board::set_vector_isa`].
+    pub fn vector_isa(&self) -> VectorIsa {
+        self.fbi.vector_isa()
+    }
+
+    /// The copy of the span kernels this board's triangles run: [`Board::vector_isa`] for
+    /// the hardware model, the baseline copy for the others (which have no other).
+    pub fn kernel_isa(&self) -> VectorIsa {
+        let simd = model::with_model!(self.model.kind(), M => <M as pixelfx::PixelModel>::SIMD);
+        if simd {
+            self.vector_isa()
+        } else {
+            VectorIsa::Baseline
+        }
     }
 
     /// The render threads in use ([`Board::set_threads`]).

@@ -14,7 +14,7 @@
 //!   per pixel. For experiments; slow.
 //!
 //! The four fixed models run the span kernels (`pixelfx::span`), each instance compiled
-//! with its own switches (the hardware model's a second time with AVX2); the custom
+//! with its own switches (the hardware model's again with AVX2 and with AVX-512, `pixelfx::isa`); the custom
 //! model runs the reference path, as `Board::set_generic_path` makes any model do.
 //!
 //! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
@@ -34,7 +34,7 @@ impl<M: PixelModel + TexelModel> ChipModel for M {}
 
 /// Defines a model type whose switches are the constant profile `$profile`.
 macro_rules! fixed_model {
-    ($(#[$doc:meta])* $name:ident = $profile:expr, avx2 = $avx2:expr) => {
+    ($(#[$doc:meta])* $name:ident = $profile:expr, simd = $simd:expr) => {
         $(#[$doc])*
         #[derive(Clone, Copy, Debug, Default)]
         pub struct $name;
@@ -45,7 +45,7 @@ macro_rules! fixed_model {
         }
 
         impl PixelModel for $name {
-            const AVX2: bool = $avx2;
+            const SIMD: bool = $simd;
 
             #[inline(always)]
             fn pixel(_runtime: &PixelProfile) -> PixelProfile {
@@ -65,22 +65,22 @@ macro_rules! fixed_model {
 fixed_model!(
     /// The hardware model: our reading of the SST-1.
     Hardware = AccuracyProfile::HARDWARE,
-    avx2 = true
+    simd = true
 );
 fixed_model!(
     /// MAME as a model.
     Mame = Reference::Mame.profile(),
-    avx2 = false
+    simd = false
 );
 fixed_model!(
     /// DOSBox Staging as a model.
     DosboxStaging = Reference::DosboxStaging.profile(),
-    avx2 = false
+    simd = false
 );
 fixed_model!(
     /// 86Box as a model.
     Box86 = Reference::Box86.profile(),
-    avx2 = false
+    simd = false
 );
 
 /// The model of `--profile FILE`: the profile the chips hold at run time, every switch

@@ -7,7 +7,9 @@
 //! front, back and aux buffers and the statistics counters must be bit-identical.
 //!
 //! Every fast replay of the hardware model runs on 1, 2 and 4 render threads
-//! (`Board::set_threads`), each of the reference models' on 1 and 2.
+//! (`Board::set_threads`) with the best copy of the span kernels the CPU has, and on one
+//! thread with each lesser copy (`Board::set_vector_isa`: baseline, AVX2, AVX-512); each
+//! of the reference models' on 1 and 2.
 //!
 //! `perf_tex_heavy` (about 40 s for two replays in release, texture-sampling bound)
 //! runs only in the ignored test: `cargo test -p sst1-board --release --test
@@ -15,7 +17,7 @@
 
 use std::path::{Path, PathBuf};
 
-use sst1_board::{AccuracyProfile, Board, BufferKind, Reference, Stats};
+use sst1_board::{AccuracyProfile, Board, BufferKind, Reference, Stats, VectorIsa};
 use sst1_trace::{execute, load_trace};
 
 /// Traces too slow for every CI run; [`slow_traces_identical`] covers them.
@@ -34,12 +36,37 @@ struct Outcome {
     stats: Stats,
 }
 
-/// How a replay draws: the reference path, or the fast path on this many render threads.
+/// How a replay draws: the reference path, or the fast path on this many render threads
+/// with this copy of the span kernels.
 #[derive(Clone, Copy, Debug)]
 enum Run {
     Reference,
-    Fast { threads: usize },
+    Fast { threads: usize, isa: VectorIsa },
 }
+
+/// The fast replays of the hardware model: 1, 2 and 4 threads with the best copy of the
+/// kernels, one thread with each lesser copy the CPU has.
+fn hardware_runs() -> Vec<Run> {
+    let best = VectorIsa::best();
+    let threads = [1, 2, 4].map(|threads| Run::Fast { threads, isa: best });
+    let lesser = VectorIsa::available()
+        .filter(|&isa| isa < best)
+        .map(|isa| Run::Fast { threads: 1, isa });
+    threads.into_iter().chain(lesser).collect()
+}
+
+/// The fast replays of a reference model (which has the baseline copy only): 1 and 2
+/// threads.
+const REFERENCE_RUNS: [Run; 2] = [
+    Run::Fast {
+        threads: 1,
+        isa: VectorIsa::Baseline,
+    },
+    Run::Fast {
+        threads: 2,
+        isa: VectorIsa::Baseline,
+    },
+];
 
 fn replay(path: &Path, profile: AccuracyProfile, run: Run) -> Outcome {
     let trace = load_trace(path).unwrap_or_else(|e| panic!("{e}"));
@@ -47,7 +74,10 @@ fn replay(path: &Path, profile: AccuracyProfile, run: Run) -> Outcome {
     board.set_profile(profile);
     match run {
         Run::Reference => board.set_generic_path(true),
-        Run::Fast { threads } => board.set_threads(threads),
+        Run::Fast { threads, isa } => {
+            board.set_threads(threads);
+            board.set_vector_isa(isa);
+        }
     }
     let mut buffers: Vec<Buffer> = execute(&trace.ops, &mut board, |_| {})
         .into_iter()
@@ -74,18 +104,15 @@ fn replay(path: &Path, profile: AccuracyProfile, run: Run) -> Outcome {
     }
 }
 
-/// Differences between the reference replay of `path` with `profile` and the fast
-/// replays on each of `threads` render threads, in words.
-fn compare(path: &Path, profile: AccuracyProfile, threads: &[usize]) -> Vec<String> {
+/// Differences between the reference replay of `path` with `profile` and each of the
+/// fast replays `runs`, in words.
+fn compare(path: &Path, profile: AccuracyProfile, runs: &[Run]) -> Vec<String> {
     let reference = replay(path, profile, Run::Reference);
-    threads
-        .iter()
-        .flat_map(|&t| {
-            differences(
-                path,
-                &reference,
-                &replay(path, profile, Run::Fast { threads: t }),
-            )
+    runs.iter()
+        .flat_map(|&run| {
+            differences(path, &reference, &replay(path, profile, run))
+                .into_iter()
+                .map(move |d| format!("{run:?}: {d}"))
         })
         .collect()
 }
@@ -141,16 +168,15 @@ fn traces(dir: &str, keep: impl Fn(&str) -> bool) -> Vec<PathBuf> {
     paths
 }
 
-/// The hardware model: the reference path against the fast path on 1, 2 and 4 render
-/// threads.
+/// The hardware model: the reference path against the fast path ([`hardware_runs`]).
 fn check_all(paths: &[PathBuf]) {
-    check_all_with(paths, AccuracyProfile::default(), &[1, 2, 4]);
+    check_all_with(paths, AccuracyProfile::default(), &hardware_runs());
 }
 
-fn check_all_with(paths: &[PathBuf], profile: AccuracyProfile, threads: &[usize]) {
+fn check_all_with(paths: &[PathBuf], profile: AccuracyProfile, runs: &[Run]) {
     let problems: Vec<String> = paths
         .iter()
-        .flat_map(|p| compare(p, profile, threads))
+        .flat_map(|p| compare(p, profile, runs))
         .collect();
     assert!(
         problems.is_empty(),
@@ -190,7 +216,7 @@ fn generated_traces_identical() {
     assert_eq!(paths.len(), 2);
     check_all(&paths);
     for reference in Reference::ALL {
-        check_all_with(&paths, reference.profile(), &[1, 2]);
+        check_all_with(&paths, reference.profile(), &REFERENCE_RUNS);
     }
 }
 
@@ -204,7 +230,7 @@ fn stability_traces_identical() {
     assert_eq!(paths.len(), 10);
     check_all(&paths);
     for reference in Reference::ALL {
-        check_all_with(&paths, reference.profile(), &[1, 2]);
+        check_all_with(&paths, reference.profile(), &REFERENCE_RUNS);
     }
 }
 
@@ -216,7 +242,7 @@ fn reference_profiles_identical() {
     let mut paths = traces("conformance/traces", |name| !SLOW.contains(&name));
     paths.extend(traces("glide-sdk/traces", |_| true));
     for reference in Reference::ALL {
-        check_all_with(&paths, reference.profile(), &[1, 2]);
+        check_all_with(&paths, reference.profile(), &REFERENCE_RUNS);
     }
 }
 

@@ -8,7 +8,7 @@
 //! dither). Every frame-buffer word and every counter must be identical, and the packed
 //! chunks must have taken pixels (and left some rows to the row path).
 
-use sst1_board::{Board, BoardConfig};
+use sst1_board::{Board, BoardConfig, VectorIsa};
 use sst1_regs::{addr, FbiInit2, RegisterBus};
 
 /// xorshift64* (Vigna), seeded.
@@ -142,9 +142,15 @@ fn stream(seed: u64) -> Vec<(u32, u32)> {
 
 /// The frame buffer's words and the counters after `writes`, on the reference path or
 /// the fast one, with the fast path's pixels in packed chunks and by the row path.
-fn replay(writes: &[(u32, u32)], reference: bool) -> (Vec<u16>, String, (u64, u64)) {
+/// `isa`: the copy of the span kernels (`None`: the reference path).
+fn replay(writes: &[(u32, u32)], isa: Option<VectorIsa>) -> (Vec<u16>, String, (u64, u64)) {
     let mut board = Board::new(BoardConfig::default());
-    board.set_generic_path(reference);
+    match isa {
+        Some(isa) => {
+            board.set_vector_isa(isa);
+        }
+        None => board.set_generic_path(true),
+    }
     board.set_threads(1);
     board.pci_write(0x40, 3);
     for &(a, v) in writes {
@@ -167,17 +173,22 @@ fn packed_chunks_equal_the_reference_path() {
     let (mut packed, mut by_rows) = (0, 0);
     for seed in 0..24 {
         let writes = stream(seed);
-        let (ram, stats, _) = replay(&writes, true);
-        let (fast_ram, fast_stats, (p, r)) = replay(&writes, false);
-        assert_eq!(stats, fast_stats, "seed {seed}: counters");
-        if let Some(i) = (0..ram.len()).find(|&i| ram[i] != fast_ram[i]) {
-            panic!(
-                "seed {seed}: word {i:#x} is {:#06x} on the fast path, {:#06x} on the reference path",
-                fast_ram[i], ram[i]
-            );
+        let (ram, stats, _) = replay(&writes, None);
+        // Every copy of the kernels the CPU has, the best last (whose counts are kept).
+        for isa in VectorIsa::available() {
+            let (fast_ram, fast_stats, (p, r)) = replay(&writes, Some(isa));
+            assert_eq!(stats, fast_stats, "seed {seed}, {isa}: counters");
+            if let Some(i) = (0..ram.len()).find(|&i| ram[i] != fast_ram[i]) {
+                panic!(
+                    "seed {seed}, {isa}: word {i:#x} is {:#06x} on the fast path, {:#06x} on the reference path",
+                    fast_ram[i], ram[i]
+                );
+            }
+            if isa == VectorIsa::best() {
+                packed += p;
+                by_rows += r;
+            }
         }
-        packed += p;
-        by_rows += r;
     }
     assert!(packed > 10_000, "{packed} pixels in packed chunks");
     assert!(by_rows > 1_000, "{by_rows} pixels left to the row path");

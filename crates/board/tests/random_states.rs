@@ -21,7 +21,7 @@
 
 use std::collections::BTreeMap;
 
-use sst1_board::{AccuracyProfile, Board, BufferKind, Reference, Stats};
+use sst1_board::{AccuracyProfile, Board, BufferKind, Reference, Stats, VectorIsa};
 use sst1_regs::{addr, map};
 use sst1_trace::scenes::{random_states, RandomStates};
 use sst1_trace::{execute, read_trace, Trace, TraceOp};
@@ -405,10 +405,23 @@ struct Outcome {
     stats: Stats,
 }
 
-fn board(trace: &Trace, profile: AccuracyProfile, reference: bool) -> Board {
+/// How a replay draws: the reference path, or the fast path with this copy of the span
+/// kernels (only the hardware model has more than the baseline copy).
+#[derive(Clone, Copy, Debug)]
+enum Draw {
+    Reference,
+    Fast(VectorIsa),
+}
+
+fn board(trace: &Trace, profile: AccuracyProfile, draw: Draw) -> Board {
     let mut board = Board::new(trace.board_config());
     board.set_profile(profile);
-    board.set_generic_path(reference);
+    match draw {
+        Draw::Reference => board.set_generic_path(true),
+        Draw::Fast(isa) => {
+            board.set_vector_isa(isa);
+        }
+    }
     board
 }
 
@@ -426,10 +439,10 @@ fn final_buffers(board: &Board, buffers: &mut Vec<(String, Vec<u16>)>) {
 fn replay(
     trace: &Trace,
     profile: AccuracyProfile,
-    reference: bool,
+    draw: Draw,
     mut coverage: Option<&mut Coverage>,
 ) -> Outcome {
-    let mut board = board(trace, profile, reference);
+    let mut board = board(trace, profile, draw);
     let tmus = trace.board_config().tmus as usize;
     let mut shadow = Shadow::new();
     let mut buffers = Vec::new();
@@ -465,9 +478,9 @@ fn replay(
 
 /// Both paths in lockstep: the first triangle after which the buffers or counters differ,
 /// with the state it ran in.
-fn first_difference(trace: &Trace, profile: AccuracyProfile) -> String {
-    let mut fast = board(trace, profile, false);
-    let mut slow = board(trace, profile, true);
+fn first_difference(trace: &Trace, profile: AccuracyProfile, isa: VectorIsa) -> String {
+    let mut fast = board(trace, profile, Draw::Fast(isa));
+    let mut slow = board(trace, profile, Draw::Reference);
     let tmus = trace.board_config().tmus as usize;
     let mut shadow = Shadow::new();
     let mut triangle = 0u64;
@@ -510,18 +523,37 @@ fn first_difference(trace: &Trace, profile: AccuracyProfile) -> String {
     "no triangle differs (a dump or fill does)".to_owned()
 }
 
+/// The fast path with each of `isas` against the reference path; `coverage` counts the
+/// first fast replay's selections.
 fn compare(
     name: &str,
     trace: &Trace,
     profile: AccuracyProfile,
-    coverage: Option<&mut Coverage>,
+    isas: &[VectorIsa],
+    mut coverage: Option<&mut Coverage>,
+) -> Vec<String> {
+    let reference = replay(trace, profile, Draw::Reference, None);
+    isas.iter()
+        .filter_map(|&isa| {
+            let fast = replay(trace, profile, Draw::Fast(isa), coverage.take());
+            difference(name, trace, profile, isa, &fast, &reference)
+        })
+        .collect()
+}
+
+/// What differs between a fast replay with `isa` and the reference replay, if anything.
+fn difference(
+    name: &str,
+    trace: &Trace,
+    profile: AccuracyProfile,
+    isa: VectorIsa,
+    fast: &Outcome,
+    reference: &Outcome,
 ) -> Option<String> {
-    let fast = replay(trace, profile, false, coverage);
-    let reference = replay(trace, profile, true, None);
     if fast == reference {
         return None;
     }
-    let mut report = format!("{name}: the fast and the reference path differ\n");
+    let mut report = format!("{name}: the fast path ({isa}) and the reference path differ\n");
     if fast.stats != reference.stats {
         report += &format!(
             "  counters reference {:?}\n  counters fast      {:?}\n",
@@ -534,7 +566,7 @@ fn compare(
             report += &format!("  {n}: {count} values differ\n");
         }
     }
-    report += &first_difference(trace, profile);
+    report += &first_difference(trace, profile, isa);
     Some(report)
 }
 
@@ -550,8 +582,15 @@ fn random_states_identical_with_every_selection_reached() {
         let trace = scene(seed, tmus);
         for &(model, profile) in &profiles {
             let name = format!("seed {seed}, {tmus} TMUs, {model} model");
-            let cov = (model == "hardware").then_some(&mut coverage);
-            problems.extend(compare(&name, &trace, profile, cov));
+            let hardware = model == "hardware";
+            let cov = hardware.then_some(&mut coverage);
+            // The hardware model's every copy of the kernels; the others have one.
+            let isas: Vec<VectorIsa> = if hardware {
+                VectorIsa::available().collect()
+            } else {
+                vec![VectorIsa::Baseline]
+            };
+            problems.extend(compare(&name, &trace, profile, &isas, cov));
         }
     }
     println!("selections reached (triangles):");
@@ -586,15 +625,23 @@ fn random_states_soak() {
     for seed in 100..100 + scenes {
         let tmus = 1 + ((seed / 3) % 3) as u32;
         let trace = scene(seed, tmus);
+        let isas: Vec<VectorIsa> = VectorIsa::available().collect();
         problems.extend(compare(
             &format!("seed {seed}, {tmus} TMUs, hardware model"),
             &trace,
             AccuracyProfile::default(),
+            &isas,
             None,
         ));
         for r in Reference::ALL {
             let name = format!("seed {seed}, {tmus} TMUs, {} model", r.golden_dir());
-            problems.extend(compare(&name, &trace, r.profile(), None));
+            problems.extend(compare(
+                &name,
+                &trace,
+                r.profile(),
+                &[VectorIsa::Baseline],
+                None,
+            ));
         }
     }
     assert!(

@@ -18,7 +18,7 @@
 //! Run the stress tests in a debug build too (`cargo test -p sst1-board --test stress`):
 //! there integer overflow panics, so any unchecked arithmetic on hostile values shows.
 
-use sst1_board::{Board, BoardConfig, BufferKind, Diagnostics, Stats};
+use sst1_board::{Board, BoardConfig, BufferKind, Diagnostics, Stats, VectorIsa};
 use sst1_regs::{addr, RegisterBus};
 
 /// Start of the LFB region of the aperture (spec 4).
@@ -558,10 +558,17 @@ fn counters(s: &Stats) -> [u64; 2] {
 /// correct but too slow for a test of this size. Unclipped drawing still happens through
 /// the init value of the clip rectangle being overwritten with random ones, and through
 /// LFB writes, which ignore clipping unless they use the pipeline.
-fn run(config: BoardConfig, ops: &[Op], reference: bool, threads: usize) -> Outcome {
+fn run(
+    config: BoardConfig,
+    ops: &[Op],
+    reference: bool,
+    threads: usize,
+    isa: VectorIsa,
+) -> Outcome {
     let mut board = Board::new(config);
     board.set_generic_path(reference);
     board.set_threads(threads);
+    board.set_vector_isa(isa);
     init(&mut board);
     let mut reads: u64 = 0xcbf2_9ce4_8422_2325;
     let mut totals = [0u64; 2];
@@ -629,20 +636,21 @@ fn describe(a: &Outcome, b: &Outcome) -> String {
 }
 
 /// Runs the stream of `seed` three times: fast path twice (determinism; the second time
-/// on three render threads), generic path once (the span kernels must not change
-/// anything). Returns the outcome.
+/// on three render threads with the baseline copy of the span kernels, the first with the
+/// best the CPU has), generic path once (the span kernels must not change anything).
+/// Returns the outcome.
 /// 25 000 steps are about 560 000 bus operations (half of them the register sweeps of
 /// `read_all`); a run takes about 0.2 s in release.
 fn check_seed(seed: u64, config: BoardConfig, steps: usize) -> Outcome {
     let ops = ops(seed, steps);
-    let first = run(config, &ops, false, 1);
-    let again = run(config, &ops, false, 3);
+    let first = run(config, &ops, false, 1, VectorIsa::best());
+    let again = run(config, &ops, false, 3, VectorIsa::Baseline);
     assert!(
         first == again,
         "seed {seed}: replay differs: {}",
         describe(&first, &again)
     );
-    let reference = run(config, &ops, true, 1);
+    let reference = run(config, &ops, true, 1, VectorIsa::best());
     assert!(
         first == reference,
         "seed {seed}: generic path differs from fast path: {}",

@@ -30,6 +30,9 @@
 //!   `nearest`, `lod-per-chunk`, `float-divide` or `fastest` (docs/methods.md).
 //! * `VOODOO_THREADS=N`: render threads for large triangles (default: the
 //!   machine's cores; `voodoo replay --threads`). The pixels are the same for every N.
+//! * `VOODOO_ISA`: the copy of the span kernels, `baseline`, `avx2` or `avx512`, capped
+//!   by what the CPU has (default: the best it has; `voodoo replay --isa`). The pixels
+//!   are the same for every copy.
 //! * `VOODOO_SAVE_STATE=path`: save the whole board (`sst1_board::state`) at
 //!   `grGlideShutdown`, or, with `VOODOO_SAVE_STATE_SWAP=N`, right after the Nth buffer
 //!   swap (1-based). With `VOODOO_TRACE` the state records how many trace ops had been
@@ -46,7 +49,7 @@
 
 use glide::consts::*;
 use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
-use sst1_board::{AccuracyProfile, Board, BoardConfig, BufferKind, Method, Reference};
+use sst1_board::{AccuracyProfile, Board, BoardConfig, BufferKind, Method, Reference, VectorIsa};
 use sst1_regs::RegisterBus;
 use sst1_trace::{DumpBuffer, Recorder, TraceWriter};
 use std::borrow::Cow;
@@ -418,6 +421,21 @@ fn render_threads() -> usize {
         .clamp(1, 256)
 }
 
+/// The copy of the span kernels `VOODOO_ISA` names, or the best the CPU has. Any other
+/// value is said once on stderr and the best runs.
+fn vector_isa() -> VectorIsa {
+    let Ok(name) = std::env::var("VOODOO_ISA") else {
+        return VectorIsa::best();
+    };
+    name.trim().parse().unwrap_or_else(|e| {
+        eprintln!(
+            "glide3: VOODOO_ISA={name:.40} is {e}; running {}",
+            VectorIsa::best()
+        );
+        VectorIsa::best()
+    })
+}
+
 fn png_setting() -> Option<(String, Option<Vec<u32>>)> {
     let path = std::env::var("VOODOO_PNG").ok()?;
     let swaps = std::env::var("VOODOO_PNG_SWAPS")
@@ -571,6 +589,7 @@ pub extern "C" fn grGlideInit() {
             board.set_profile(model_profile());
             board.set_method(draw_method());
             board.set_threads(render_threads());
+            board.set_vector_isa(vector_isa());
             let board = Rc::new(RefCell::new(board));
             let recording = Recording::from_env(&board, cfg);
             let bus = match &recording {

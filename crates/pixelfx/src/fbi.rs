@@ -55,6 +55,8 @@ pub struct Fbi {
     pub path_counts: PathCounts,
     /// Render threads for large triangles ([`Fbi::set_threads`]).
     pub(crate) threads: usize,
+    /// The copy of the span kernels that runs ([`Fbi::set_vector_isa`]).
+    pub(crate) isa: crate::VectorIsa,
     /// The pixel whose history is recorded ([`Fbi::set_watch`]), if any.
     pub(crate) watch: Option<Box<crate::watch::PixelWatch>>,
     /// The lanes of packed chunks, kept from triangle to triangle so that a triangle does
@@ -111,6 +113,7 @@ impl Fbi {
             generic_path: false,
             path_counts: PathCounts::default(),
             threads: 1,
+            isa: crate::VectorIsa::best(),
             watch: None,
             pack: None,
         }

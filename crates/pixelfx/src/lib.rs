@@ -13,6 +13,7 @@ pub mod fastfill;
 pub mod fb;
 pub mod fbi;
 pub mod fog;
+pub mod isa;
 pub mod iter;
 pub mod lfb;
 pub mod model;
@@ -28,6 +29,7 @@ pub mod stipple;
 pub mod watch;
 
 pub use fbi::{Command, Fbi, PathCounts};
+pub use isa::VectorIsa;
 pub use model::{PixelModel, RuntimeProfile};
 pub use profile::PixelProfile;
 pub use raster::{LanePlace, NoTexture, TexelSource};

@@ -23,10 +23,11 @@ pub trait PixelModel: 'static {
     /// path, pixel by pixel. Each model that does gets its own copies of the kernels.
     const SPAN_KERNELS: bool = true;
 
-    /// Whether the span kernels are compiled a second time with AVX2, used where the CPU
-    /// has it. A copy of every kernel more: the hardware model, which programs run, has
-    /// it; the reference models, instruments for judging it, run the baseline copy.
-    const AVX2: bool = false;
+    /// Whether the span kernels are compiled again with AVX2 and with AVX-512
+    /// ([`crate::isa`]), the best the CPU has used. Two copies of every kernel more:
+    /// the hardware model, which programs run, has them; the reference models,
+    /// instruments for judging it, run the baseline copy.
+    const SIMD: bool = false;
 }
 
 /// The run-time-profile model: the profile held at run time, every switch tested per pixel. For

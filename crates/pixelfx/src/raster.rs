@@ -6,6 +6,7 @@ use sst1_regs::Rgba;
 
 use crate::fbi::Fbi;
 use crate::fbi::PathCounts;
+use crate::isa::VectorIsa;
 use crate::iter::Iterated;
 use crate::model::PixelModel;
 use crate::params::TriangleParams;
@@ -142,6 +143,19 @@ impl Fbi {
     /// the threads are rayon's global pool.
     pub fn set_threads(&mut self, threads: usize) {
         self.threads = threads.clamp(1, MAX_THREADS);
+    }
+
+    /// Run the copy of the span kernels compiled for `cap`, or the best one the CPU has
+    /// below it ([`crate::isa`]); returns the copy that will run. The integers are the
+    /// same for every copy. Each FBI starts with [`VectorIsa::best`].
+    pub fn set_vector_isa(&mut self, cap: VectorIsa) -> VectorIsa {
+        self.isa = cap.min(VectorIsa::best());
+        self.isa
+    }
+
+    /// The copy of the span kernels that runs ([`Fbi::set_vector_isa`]).
+    pub fn vector_isa(&self) -> VectorIsa {
+        self.isa
     }
 
     /// The render threads set with [`Fbi::set_threads`].
@@ -284,6 +298,7 @@ impl Fbi {
             fog_table: &self.fog_table,
             params: &self.params,
             profile: self.profile,
+            isa: self.isa,
         };
         (shader, Memory::Whole(&mut self.fb.ram))
     }
@@ -505,8 +520,13 @@ impl Fbi {
             });
         }
         let mut counters = vec![(Stats::default(), PathCounts::default()); threads];
-        let (dither, fog_table, params, profile) =
-            (&self.dither, &self.fog_table, &self.params, self.profile);
+        let (dither, fog_table, params, profile, isa) = (
+            &self.dither,
+            &self.fog_table,
+            &self.params,
+            self.profile,
+            self.isa,
+        );
         let sources: Vec<T::Band<'_>> = (0..threads).map(|_| tex.band()).collect();
         rayon::scope(|scope| {
             let jobs = bands.into_iter().zip(counters.iter_mut()).zip(sources);
@@ -519,6 +539,7 @@ impl Fbi {
                         fog_table,
                         params,
                         profile,
+                        isa,
                     };
                     shade_band_rows::<M, _>(&mut shader, st, band, a, consts, &mut source);
                 });

@@ -28,6 +28,7 @@ use sst1_dither::{Dither, DitherKind};
 use sst1_fog::FogTable;
 
 use crate::fbi::{Fbi, PathCounts};
+use crate::isa::VectorIsa;
 use crate::iter::{wfloat, Iterated};
 use crate::model::PixelModel;
 use crate::params::TriangleParams;
@@ -569,7 +570,7 @@ impl Lane for u16 {
 
 /// `[f(0), f(1), ..]`: one value per lane, as a plain loop over the array. Unlike
 /// `core::array::from_fn`, which the compiler may leave as a call (and then compiles
-/// for the baseline target even inside the AVX2 kernels), this is always inlined into
+/// for the baseline target even inside the vector kernels), this is always inlined into
 /// the kernel and vectorised there.
 #[inline(always)]
 pub(crate) fn lanes<T: Lane, const L: usize>(mut f: impl FnMut(usize) -> T) -> [T; L] {
@@ -784,13 +785,17 @@ pub(crate) struct Shader<'a> {
     pub fog_table: &'a FogTable,
     pub params: &'a TriangleParams,
     pub profile: PixelProfile,
+    /// The copy of the kernels to run, where the model has them all
+    /// ([`PixelModel::SIMD`]).
+    pub isa: VectorIsa,
 }
 
 impl Shader<'_> {
     /// Shade one chunk ([`Shader::shade_chunk`] at the width its place asks:
-    /// [`ShadeChunk`]), compiled for the best vector instructions the CPU has: with AVX2
-    /// where the model asks for it ([`PixelModel::AVX2`]) and the CPU has it (found at
-    /// run time), for the baseline target otherwise. Both compute the same integers.
+    /// [`ShadeChunk::shade`]), compiled for the instructions `self.isa` names where the
+    /// model has every copy ([`PixelModel::SIMD`]; `isa` is never above what the CPU
+    /// has, [`crate::Fbi::set_vector_isa`]), for the baseline target otherwise. Every copy
+    /// computes the same integers.
     #[inline]
     pub(crate) fn shade_chunk_of<M: PixelModel, T: TexelSource, C: ShadeChunk>(
         &mut self,
@@ -798,9 +803,14 @@ impl Shader<'_> {
         place: &C,
     ) {
         #[cfg(target_arch = "x86_64")]
-        if M::AVX2 && std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe { self.shade_chunk_avx2::<M, T, C>(job, place) };
+        if M::SIMD {
+            match self.isa {
+                // SAFETY: `isa` is at most `VectorIsa::best()`, what the CPU has.
+                VectorIsa::Avx512 => unsafe { self.shade_chunk_avx512::<M, T, C>(job, place) },
+                // SAFETY: as above.
+                VectorIsa::Avx2 => unsafe { self.shade_chunk_avx2::<M, T, C>(job, place) },
+                VectorIsa::Baseline => self.shade_chunk_baseline::<M, T, C>(job, place),
+            }
             return;
         }
         self.shade_chunk_baseline::<M, T, C>(job, place);
@@ -813,6 +823,20 @@ impl Shader<'_> {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn shade_chunk_avx2<M: PixelModel, T: TexelSource, C: ShadeChunk>(
+        &mut self,
+        job: ChunkJob<'_, '_, T>,
+        place: &C,
+    ) {
+        place.shade::<M, T>(self, job);
+    }
+
+    /// [`ShadeChunk::shade`] compiled with AVX-512 enabled.
+    ///
+    /// # Safety
+    /// The CPU must have AVX-512 F, DQ, BW and VL.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,avx512f,avx512dq,avx512bw,avx512vl")]
+    unsafe fn shade_chunk_avx512<M: PixelModel, T: TexelSource, C: ShadeChunk>(
         &mut self,
         job: ChunkJob<'_, '_, T>,
         place: &C,
@@ -928,7 +952,7 @@ impl Shader<'_> {
             &consts.zero_colour
         };
         // Plain loops, not nested closures: a closure the compiler leaves as a call is
-        // compiled for the baseline target, outside the AVX2 kernel.
+        // compiled for the baseline target, outside the vector kernel.
         let mut iterated = ColourLanes::<L>::ZERO;
         for (c, lanes) in iterated.c.iter_mut().enumerate() {
             let raw = place.colour(c);

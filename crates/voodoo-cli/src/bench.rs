@@ -16,7 +16,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use sst1_board::{Board, Method, Stats};
+use sst1_board::{Board, Method, Stats, VectorIsa};
 use sst1_trace::scenes::{self, RandomStates};
 use sst1_trace::{
     encode_binary, execute, execute_trace_stream, load_trace, read_trace, stream_trace, Trace,
@@ -49,6 +49,9 @@ pub struct Options {
     /// Also run every approximate method (`sst1_board::Method`) on one thread, a row each
     /// with its speed-up over the fast path.
     pub methods: bool,
+    /// Also run the fast path with each copy of the span kernels below the best the CPU
+    /// has (`pixelfx::isa`), one thread, a row each with its speed-up over the fast path.
+    pub isas: bool,
     /// Write the chart of every method on every trace into this folder instead
     /// (module `chart`).
     pub chart: Option<PathBuf>,
@@ -142,6 +145,8 @@ enum Run {
     Fast(usize),
     /// An approximate method, one thread.
     Approx(Method),
+    /// The fast path, one thread, with this copy of the span kernels.
+    Isa(VectorIsa),
     /// The fast path, one thread, reading the scene's binary form as it runs (what
     /// `voodoo replay FILE.vtrace` does, from memory rather than a file).
     FromBinary,
@@ -156,6 +161,10 @@ fn run_once(scene: &Scene, run: Run) -> (Timing, Stats) {
         Run::Fast(threads) => board.set_threads(threads),
         Run::Approx(method) => {
             board.set_method(method);
+            board.set_threads(1);
+        }
+        Run::Isa(isa) => {
+            board.set_vector_isa(isa);
             board.set_threads(1);
         }
         Run::FromBinary => board.set_threads(1),
@@ -314,8 +323,9 @@ pub fn bench(o: &Options) -> Result<(), String> {
     };
     if !o.json {
         println!(
-            "best of {} run(s) per path, {timer} of the replay (parsing excluded but on the binary row, which decodes the binary form as it runs; the threaded row by wall time){}",
+            "best of {} run(s) per path, {timer} of the replay (parsing excluded but on the binary row, which decodes the binary form as it runs; the threaded row by wall time); the fast path's kernels compiled for {}{}",
             o.iters.max(1),
+            VectorIsa::best(),
             clock.map_or(String::new(), |(hz, from)| format!(
                 "; clock {:.2} GHz ({from})",
                 hz / 1e9
@@ -398,6 +408,46 @@ pub fn bench(o: &Options) -> Result<(), String> {
         } else {
             Vec::new()
         };
+        // The lesser copies of the kernels, interleaved with the fast path as the methods
+        // are.
+        let lesser: Vec<VectorIsa> = if o.isas {
+            VectorIsa::available()
+                .filter(|&isa| isa < VectorIsa::best())
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let mut isa_best: Vec<Option<(Timing, Stats)>> = vec![None; lesser.len()];
+        for _ in 0..if lesser.is_empty() { 0 } else { o.iters.max(1) } {
+            let (t, s) = run_once(scene, Run::Fast(1));
+            if t.key() < fast.timing.key() {
+                fast = PathResult {
+                    timing: t,
+                    stats: s,
+                };
+            }
+            for (slot, &isa) in isa_best.iter_mut().zip(&lesser) {
+                let (t, s) = run_once(scene, Run::Isa(isa));
+                if slot.is_none_or(|(b, _)| t.key() < b.key()) {
+                    *slot = Some((t, s));
+                }
+            }
+        }
+        let isa_rows: Vec<(VectorIsa, PathResult)> = lesser
+            .into_iter()
+            .zip(isa_best)
+            .filter_map(|(isa, b)| {
+                b.map(|(t, s)| {
+                    (
+                        isa,
+                        PathResult {
+                            timing: t,
+                            stats: s,
+                        },
+                    )
+                })
+            })
+            .collect();
         let speedup = reference.secs() / fast.secs();
         // Threads against one thread, both by the wall clock.
         let thread_speedup = threaded
@@ -405,7 +455,8 @@ pub fn bench(o: &Options) -> Result<(), String> {
             .map(|t| fast.timing.wall.as_secs_f64() / t.secs());
         let same = fast.stats == reference.stats
             && from_binary.stats == fast.stats
-            && threaded.as_ref().is_none_or(|t| t.stats == fast.stats);
+            && threaded.as_ref().is_none_or(|t| t.stats == fast.stats)
+            && isa_rows.iter().all(|(_, r)| r.stats == fast.stats);
         all_match &= same;
         let hz = clock.map(|(hz, _)| hz);
         if o.json {
@@ -423,6 +474,12 @@ pub fn bench(o: &Options) -> Result<(), String> {
                 "thread_speedup_wall": thread_speedup,
                 "methods": approx.iter().map(|(m, r)| serde_json::json!({
                     "method": m.name(),
+                    "result": r.json(hz),
+                    "speedup_over_fast": fast.secs() / r.secs(),
+                })).collect::<Vec<_>>(),
+                "isa": VectorIsa::best().name(),
+                "isas": isa_rows.iter().map(|(isa, r)| serde_json::json!({
+                    "isa": isa.name(),
                     "result": r.json(hz),
                     "speedup_over_fast": fast.secs() / r.secs(),
                 })).collect::<Vec<_>>(),
@@ -446,6 +503,9 @@ pub fn bench(o: &Options) -> Result<(), String> {
             }
             for (m, r) in &approx {
                 rows.push((m.name(), r, format!("{:.2}x/f", fast.secs() / r.secs())));
+            }
+            for (isa, r) in &isa_rows {
+                rows.push((isa.name(), r, format!("{:.2}x/f", fast.secs() / r.secs())));
             }
             for (label, r, up) in rows {
                 let name = if label == "fast" {

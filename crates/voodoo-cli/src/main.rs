@@ -21,7 +21,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use sst1_board::{AccuracyProfile, Board, BufferKind, Method, Reference};
+use sst1_board::{AccuracyProfile, Board, BufferKind, Method, Reference, VectorIsa};
 use sst1_regs::map;
 use sst1_trace::judge;
 use sst1_trace::text::parse_number;
@@ -103,6 +103,11 @@ enum Command {
         /// texture stages for speed, each giving up what its line says (docs/methods.md).
         #[arg(long, value_enum, value_name = "NAME")]
         method: Option<MethodArg>,
+        /// The copy of the span kernels to run (one-board models; only the hardware model
+        /// has the vector copies): `baseline`, `avx2` or `avx512`, capped by what the CPU
+        /// has. Every copy gives the same output. Default: the best the CPU has.
+        #[arg(long, value_name = "ISA")]
+        isa: Option<VectorIsa>,
     },
     /// Replay a trace on a model (default: the hardware model) and judge each of its dumps
     /// against reference emulators' goldens with the conformance pass rule: every pixel
@@ -223,6 +228,11 @@ enum Command {
         /// each, with its speed-up over the fast path (`x/f`).
         #[arg(long)]
         methods: bool,
+        /// Also run the fast path with each copy of the span kernels below the best the
+        /// CPU has (`replay --isa`), one thread, a row each with its speed-up over the
+        /// fast path (`x/f`).
+        #[arg(long)]
+        isas: bool,
         /// Instead: replay every trace of the repository (or the TRACES given) with every
         /// method and write into DIR the table (table.md, .csv, .json: Mpix/s, speed-up,
         /// share of pixels identical to `exact`, PSNR, largest channel error), the
@@ -388,12 +398,16 @@ fn main() -> ExitCode {
             save_at,
             resume,
             method,
+            isa,
         } => resolve_model(model, profile.as_deref()).and_then(|resolved| {
             if no_timing && resolved.is_none() {
                 return Err("--no-timing needs a one-board model (not --model vote)".into());
             }
             if method.is_some() && resolved.is_none() {
                 return Err("--method needs a one-board model (not --model vote)".into());
+            }
+            if isa.is_some() && resolved.is_none() {
+                return Err("--isa needs a one-board model (not --model vote)".into());
             }
             if (save_at.is_some() || resume.is_some()) && resolved.is_none() {
                 return Err(
@@ -427,6 +441,7 @@ fn main() -> ExitCode {
                     profile: p,
                     timing: !no_timing,
                     method: method.map_or(Method::Exact, Method::from),
+                    isa: isa.unwrap_or_else(VectorIsa::best),
                 }),
                 threads.unwrap_or_else(default_threads),
                 session,
@@ -492,10 +507,12 @@ fn main() -> ExitCode {
             trace_dir,
             threads,
             methods,
+            isas,
             chart,
         } => bench::bench(&bench::Options {
             threads: threads.unwrap_or_else(default_threads),
             methods,
+            isas,
             chart,
             traces,
             iters,
@@ -607,6 +624,8 @@ struct OneBoard {
     /// The timing model on.
     timing: bool,
     method: Method,
+    /// The copy of the span kernels (capped by the CPU's).
+    isa: VectorIsa,
 }
 
 impl OneBoard {
@@ -616,6 +635,7 @@ impl OneBoard {
             profile,
             timing: true,
             method: Method::Exact,
+            isa: VectorIsa::best(),
         }
     }
 }
@@ -674,6 +694,7 @@ fn run(
             // The method is how this replay draws, not board state: a resumed board
             // takes this replay's.
             board.set_method(one.method);
+            board.set_vector_isa(one.isa);
             // The ops the state had run.
             let mut skipped = 0;
             for op in stream
@@ -926,10 +947,11 @@ fn replay(
             println!("swaps        {}", c.swaps);
             let paths = board.path_counts();
             println!(
-                "shaded by    span kernels {} ({} on render threads, {} in chunks packed from short rows), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {})",
+                "shaded by    span kernels {} ({} on render threads, {} in chunks packed from short rows; compiled for {}), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {})",
                 paths.span_kernels,
                 paths.in_bands,
                 paths.packed,
+                board.kernel_isa(),
                 paths.short_rows + paths.aliased_layout + paths.reference,
                 paths.short_rows,
                 paths.aliased_layout,
