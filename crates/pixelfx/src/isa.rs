@@ -5,7 +5,8 @@
 //! the same integers (the identity tests run every copy the CPU has against the
 //! reference path); a copy only changes how many lanes one instruction handles, and
 //! which operations have a vector instruction at all (AVX-512 DQ converts 64-bit
-//! integers to doubles and multiplies them, which the textured lanes' S, T and W need).
+//! integers to doubles and multiplies them, which the textured lanes' S, T and W need;
+//! CD counts leading zeros, which the LOD's logarithm needs; F gathers texels).
 //! Which copy runs is chosen per FBI ([`crate::Fbi::set_vector_isa`]): the best the CPU
 //! has unless a caller caps it.
 
@@ -21,7 +22,7 @@ pub enum VectorIsa {
     Baseline,
     /// AVX2 (x86-64-v3's vector instructions).
     Avx2,
-    /// AVX-512 F, DQ, BW and VL (x86-64-v4's).
+    /// AVX-512 F, DQ, CD, BW and VL (x86-64-v4's).
     Avx512,
 }
 
@@ -34,7 +35,8 @@ impl VectorIsa {
         #[cfg(target_arch = "x86_64")]
         {
             use std::arch::is_x86_feature_detected as has;
-            if has!("avx512f") && has!("avx512dq") && has!("avx512bw") && has!("avx512vl") {
+            let avx512 = has!("avx512f") && has!("avx512dq") && has!("avx512cd");
+            if avx512 && has!("avx512bw") && has!("avx512vl") {
                 return VectorIsa::Avx512;
             }
             if has!("avx2") {

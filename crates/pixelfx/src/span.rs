@@ -833,9 +833,9 @@ impl Shader<'_> {
     /// [`ShadeChunk::shade`] compiled with AVX-512 enabled.
     ///
     /// # Safety
-    /// The CPU must have AVX-512 F, DQ, BW and VL.
+    /// The CPU must have AVX-512 F, DQ, CD, BW and VL.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,avx512f,avx512dq,avx512bw,avx512vl")]
+    #[target_feature(enable = "avx2,avx512f,avx512dq,avx512cd,avx512bw,avx512vl")]
     unsafe fn shade_chunk_avx512<M: PixelModel, T: TexelSource, C: ShadeChunk>(
         &mut self,
         job: ChunkJob<'_, '_, T>,

@@ -161,14 +161,18 @@ const MANTISSA_KEYS: usize = 1 << 17;
 /// For every mantissa key ([`MANTISSA_KEYS`]), the log fraction [`reciplog_in`] takes
 /// from the reciprocal/log table: the two entries interpolated and rounded to 8 bits
 /// (0..=256), computed once from [`reciplog_table`], so that the span kernels' lanes
-/// find it with one load instead of two loads, two multiplies and a rounding.
-pub(crate) fn reciplog_log_fractions() -> &'static [u16; MANTISSA_KEYS] {
-    static FRACTIONS: std::sync::OnceLock<Box<[u16; MANTISSA_KEYS]>> = std::sync::OnceLock::new();
+/// find it with one load instead of two loads, two multiplies and a rounding. Held as
+/// 32-bit words, which a vector gather loads (there is no 16-bit gather).
+pub(crate) fn reciplog_log_fractions() -> &'static [u32; MANTISSA_KEYS] {
+    static FRACTIONS: std::sync::OnceLock<Box<[u32; MANTISSA_KEYS]>> = std::sync::OnceLock::new();
     FRACTIONS.get_or_init(|| {
         let table = reciplog_table();
-        let mut fractions = Box::new([0u16; MANTISSA_KEYS]);
+        let mut fractions: Box<[u32; MANTISSA_KEYS]> = vec![0u32; MANTISSA_KEYS]
+            .into_boxed_slice()
+            .try_into()
+            .expect("MANTISSA_KEYS words");
         for (key, f) in fractions.iter_mut().enumerate() {
-            *f = log_fraction(table, key >> 8, key as u32 & 0xff) as u16;
+            *f = log_fraction(table, key >> 8, key as u32 & 0xff);
         }
         fractions
     })
@@ -178,15 +182,14 @@ pub(crate) fn reciplog_log_fractions() -> &'static [u16; MANTISSA_KEYS] {
 /// loops, its fraction from [`reciplog_log_fractions`]: the same integer for every
 /// value (test `branch_free_reciplog_log`).
 #[inline(always)]
-pub(crate) fn reciplog_log_keyed(fractions: &[u16; MANTISSA_KEYS], value: i64) -> i32 {
+pub(crate) fn reciplog_log_keyed(fractions: &[u32; MANTISSA_KEYS], value: i64) -> i32 {
     let mag = value.wrapping_abs() as u64;
     let high = mag & 0xffff_0000_0000 != 0;
     let temp = if high { (mag >> 16) as u32 } else { mag as u32 };
     let lz = temp.leading_zeros();
     let exponent = if high { -16 } else { 0 } + lz as i32;
     let norm = temp.wrapping_shl(lz);
-    let log =
-        ((exponent + 1) << 8) - i32::from(fractions[(norm >> 14) as usize & (MANTISSA_KEYS - 1)]);
+    let log = ((exponent + 1) << 8) - fractions[(norm >> 14) as usize & (MANTISSA_KEYS - 1)] as i32;
     if temp == 0 {
         1000 << 8
     } else {

@@ -635,9 +635,7 @@ impl Tmu {
         if one_level {
             let level = level(needed.trailing_zeros() as usize);
             for k in 0..tap_count {
-                for i in 0..n {
-                    texels[k][i] = level.get(taps[k][i] as usize).copied().unwrap_or(0);
-                }
+                gather(level, &taps[k], n, &mut texels[k]);
             }
         } else {
             for k in 0..tap_count {
@@ -671,6 +669,23 @@ impl Tmu {
                 local[ch][i] = (sum >> 8) as i32;
             }
         }
+    }
+}
+
+/// `out[i] = level[taps[i]]` for the first `n` lanes, 0 where a tap is past the level.
+/// Written without a branch per lane (the load's index clamped, its value dropped after),
+/// so that it compiles to one vector gather where the target has a fast one (AVX-512).
+#[inline(always)]
+fn gather(level: &[u32], taps: &[u32; LANES], n: usize, out: &mut [u32; LANES]) {
+    let Some(last) = level.len().checked_sub(1) else {
+        out[..n].fill(0);
+        return;
+    };
+    // Indices below 2^31, which a gather of 32-bit indices takes; no level is that long.
+    let last = last.min(i32::MAX as usize) as u32;
+    for (o, &tap) in out[..n].iter_mut().zip(&taps[..n]) {
+        let texel = level[tap.min(last) as usize];
+        *o = if tap <= last { texel } else { 0 };
     }
 }
 
@@ -978,8 +993,23 @@ fn combine_lanes(
 
 #[cfg(test)]
 mod tests {
-    use super::{f64_to_i32_lanes, i64_to_f64};
+    use super::{f64_to_i32_lanes, gather, i64_to_f64, LANES};
     use crate::lod::f64_to_i32_x86;
+
+    #[test]
+    fn gather_reads_each_tap_and_zero_past_the_level() {
+        let level: Vec<u32> = (0..8).map(|i| 0x100 + i).collect();
+        let mut taps = [0u32; LANES];
+        for (i, t) in taps.iter_mut().enumerate() {
+            *t = [3, 0, 7, 8, u32::MAX, 5][i % 6];
+        }
+        let mut out = [0xdead_u32; LANES];
+        gather(&level, &taps, 6, &mut out);
+        assert_eq!(out[..6], [0x103, 0x100, 0x107, 0, 0, 0x105]);
+        assert_eq!(out[6], 0xdead, "lanes past n are left alone");
+        gather(&[], &taps, 6, &mut out);
+        assert_eq!(out[..6], [0; 6]);
+    }
 
     #[test]
     fn split_conversion_rounds_as_the_direct_one() {
