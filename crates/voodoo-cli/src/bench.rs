@@ -152,6 +152,41 @@ enum Run {
     FromBinary,
 }
 
+/// The fastest of `iters` runs of each of `runs`, in rounds with the fast path, so that
+/// a change in the machine's load falls on all of them alike; `fast` becomes the
+/// fastest of its runs here and before. No runs, no rounds.
+fn interleaved<K: Copy>(
+    scene: &Scene,
+    runs: Vec<K>,
+    run: impl Fn(K) -> Run,
+    iters: u32,
+    fast: &mut PathResult,
+) -> Vec<(K, PathResult)> {
+    if runs.is_empty() {
+        return Vec::new();
+    }
+    let mut best: Vec<Option<(Timing, Stats)>> = vec![None; runs.len()];
+    for _ in 0..iters.max(1) {
+        let (t, s) = run_once(scene, Run::Fast(1));
+        if t.key() < fast.timing.key() {
+            *fast = PathResult {
+                timing: t,
+                stats: s,
+            };
+        }
+        for (slot, &k) in best.iter_mut().zip(&runs) {
+            let (t, s) = run_once(scene, run(k));
+            if slot.is_none_or(|(b, _)| t.key() < b.key()) {
+                *slot = Some((t, s));
+            }
+        }
+    }
+    runs.into_iter()
+        .zip(best)
+        .filter_map(|(k, b)| b.map(|(timing, stats)| (k, PathResult { timing, stats })))
+        .collect()
+}
+
 /// Replays `scene` once on a fresh board.
 fn run_once(scene: &Scene, run: Run) -> (Timing, Stats) {
     let trace = &scene.trace;
@@ -369,47 +404,11 @@ pub fn bench(o: &Options) -> Result<(), String> {
                 stats: s,
             }
         });
-        let approx: Vec<(Method, PathResult)> = if o.methods {
-            // Rounds of the fast path and each method in turn, the fastest of each kept,
-            // so that a change in the machine's load falls on all of them alike; the
-            // fast row becomes the fastest of its runs in both loops.
-            let methods: Vec<Method> = Method::ALL.into_iter().filter(|m| !m.is_exact()).collect();
-            let mut best: Vec<Option<(Timing, Stats)>> = vec![None; methods.len()];
-            for _ in 0..o.iters.max(1) {
-                let (t, s) = run_once(scene, Run::Fast(1));
-                if t.key() < fast.timing.key() {
-                    fast = PathResult {
-                        timing: t,
-                        stats: s,
-                    };
-                }
-                for (slot, &m) in best.iter_mut().zip(&methods) {
-                    let (t, s) = run_once(scene, Run::Approx(m));
-                    if slot.is_none_or(|(b, _)| t.key() < b.key()) {
-                        *slot = Some((t, s));
-                    }
-                }
-            }
-            methods
-                .into_iter()
-                .zip(best)
-                .filter_map(|(m, b)| {
-                    b.map(|(t, s)| {
-                        (
-                            m,
-                            PathResult {
-                                timing: t,
-                                stats: s,
-                            },
-                        )
-                    })
-                })
-                .collect()
+        let methods: Vec<Method> = if o.methods {
+            Method::ALL.into_iter().filter(|m| !m.is_exact()).collect()
         } else {
             Vec::new()
         };
-        // The lesser copies of the kernels, interleaved with the fast path as the methods
-        // are.
         let lesser: Vec<VectorIsa> = if o.isas {
             VectorIsa::available()
                 .filter(|&isa| isa < VectorIsa::best())
@@ -417,37 +416,8 @@ pub fn bench(o: &Options) -> Result<(), String> {
         } else {
             Vec::new()
         };
-        let mut isa_best: Vec<Option<(Timing, Stats)>> = vec![None; lesser.len()];
-        for _ in 0..if lesser.is_empty() { 0 } else { o.iters.max(1) } {
-            let (t, s) = run_once(scene, Run::Fast(1));
-            if t.key() < fast.timing.key() {
-                fast = PathResult {
-                    timing: t,
-                    stats: s,
-                };
-            }
-            for (slot, &isa) in isa_best.iter_mut().zip(&lesser) {
-                let (t, s) = run_once(scene, Run::Isa(isa));
-                if slot.is_none_or(|(b, _)| t.key() < b.key()) {
-                    *slot = Some((t, s));
-                }
-            }
-        }
-        let isa_rows: Vec<(VectorIsa, PathResult)> = lesser
-            .into_iter()
-            .zip(isa_best)
-            .filter_map(|(isa, b)| {
-                b.map(|(t, s)| {
-                    (
-                        isa,
-                        PathResult {
-                            timing: t,
-                            stats: s,
-                        },
-                    )
-                })
-            })
-            .collect();
+        let approx = interleaved(scene, methods, Run::Approx, o.iters, &mut fast);
+        let isa_rows = interleaved(scene, lesser, Run::Isa, o.iters, &mut fast);
         let speedup = reference.secs() / fast.secs();
         // Threads against one thread, both by the wall clock.
         let thread_speedup = threaded

@@ -569,6 +569,55 @@ fn bench_reports_both_paths() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
+/// `--isa`: every copy of the span kernels draws the same pixels and `--stats` names the
+/// copy that ran (capped by the CPU's); a wrong name and the vote are refused.
+#[test]
+fn every_copy_of_the_kernels_draws_the_same() {
+    let dir = scratch("isa");
+    stdout(&voodoo(
+        &dir,
+        &[
+            "gen",
+            "small-tex-tris",
+            "--count",
+            "300",
+            "--out",
+            "tex.trace",
+        ],
+    ));
+    let mut fronts = Vec::new();
+    for isa in ["baseline", "avx2", "avx512"] {
+        let out = stdout(&voodoo(
+            &dir,
+            &["replay", "tex.trace", "--isa", isa, "--out", isa, "--stats"],
+        ));
+        let shaded = out
+            .lines()
+            .find(|l| l.starts_with("shaded by"))
+            .unwrap_or("");
+        assert!(shaded.contains("compiled for "), "{out}");
+        if isa == "baseline" {
+            assert!(shaded.contains("compiled for baseline"), "{out}");
+        }
+        fronts.push(std::fs::read(dir.join(isa).join("small_triangles_front.raw")).unwrap());
+    }
+    assert_eq!(fronts[0], fronts[1]);
+    assert_eq!(fronts[0], fronts[2]);
+    let bad = voodoo(&dir, &["replay", "tex.trace", "--isa", "sse4"]);
+    assert!(!bad.status.success());
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains("not baseline, avx2 or avx512"),
+        "{}",
+        String::from_utf8_lossy(&bad.stderr)
+    );
+    let vote = voodoo(
+        &dir,
+        &["replay", "tex.trace", "--isa", "avx2", "--model", "vote"],
+    );
+    assert!(!vote.status.success());
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
 /// `--method`: the exact methods draw the same pixels, an approximation on a textured
 /// scene does not, and a wrong name or the vote is refused; `gen stability` writes a
 /// family or names them; `bench --methods` and `--chart` on a tiny scene.
