@@ -425,8 +425,9 @@ impl Board {
 
     /// Replaces this board's state with the save state `bytes`, which must be of a board
     /// of the same configuration and model ([`StateError::OtherConfig`],
-    /// [`StateError::OtherModel`]). The render threads and the generic-path switch stay
-    /// as they are. On an error the board is unchanged. Returns what the header says.
+    /// [`StateError::OtherModel`]). How it draws stays as it is: the render threads, the
+    /// generic-path switch, the approximations of [`Board::set_method`] and the copy of
+    /// the span kernels. On an error the board is unchanged. Returns what the header says.
     pub fn load_state(&mut self, bytes: &[u8]) -> Result<StateInfo, StateError> {
         let info = read_info(bytes)?;
         if info.config != self.config {
@@ -444,6 +445,10 @@ impl Board {
         let (mut board, info) = Board::from_state(bytes)?;
         board.set_threads(self.threads());
         board.set_generic_path(self.fbi.generic_path());
+        board.set_vector_isa(self.vector_isa());
+        for (loaded, tmu) in board.tmus.iter_mut().zip(&self.tmus) {
+            loaded.set_approx(tmu.approx());
+        }
         *self = board;
         Ok(info)
     }

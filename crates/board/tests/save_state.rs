@@ -17,7 +17,7 @@
 use std::path::{Path, PathBuf};
 
 use sst1_board::state::{read_info, StateError, FORMAT_VERSION, MAGIC};
-use sst1_board::{Board, BoardConfig, BufferKind, Model, Reference};
+use sst1_board::{Board, BoardConfig, BufferKind, Method, Model, Reference, VectorIsa};
 use sst1_regs::{addr, RegisterBus};
 use sst1_trace::{execute, load_trace, Dump, TraceOp};
 
@@ -219,6 +219,22 @@ fn conformance_traces_resume_identically() {
         check_dir("conformance/traces", &[Model::Hardware], false),
         41
     );
+}
+
+/// Loading a state keeps how the board draws: its render threads, copy of the span
+/// kernels and method (none of them is saved state).
+#[test]
+fn loading_keeps_how_the_board_draws() {
+    let saved = used_board(BoardConfig::default()).save_state();
+    let mut board = Board::new(BoardConfig::default());
+    board.set_threads(3);
+    board.set_vector_isa(VectorIsa::Baseline);
+    board.set_method(Method::Nearest);
+    board.load_state(&saved).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(board.threads(), 3);
+    assert_eq!(board.vector_isa(), VectorIsa::Baseline);
+    let tmu = board.tmu(0).expect("one TMU");
+    assert_eq!(tmu.approx(), Method::Nearest.approx());
 }
 
 /// The host's choice of render threads is not state: the same trace on one thread and on
