@@ -41,7 +41,7 @@ extern "C" {
 
 /* The version of this interface that sst1_api_version() returns. It grows by one when
  * a function or a field is added; existing ones keep their meaning. */
-#define SST1_API_VERSION 2
+#define SST1_API_VERSION 3
 
 /* Size of the memory aperture in bytes (16 MiB). Valid offsets are below it. */
 #define SST1_APERTURE_SIZE 0x1000000u
@@ -195,6 +195,24 @@ sst1_result sst1_set_render_threads(sst1_board *board, uint32_t threads);
 
 /* Stores the setting of sst1_set_render_threads in *threads (0 until it is called). */
 sst1_result sst1_get_render_threads(const sst1_board *board, uint32_t *threads);
+
+/* The copies of the fast path's span kernels, by the instructions they may use (API
+ * version 3). Every copy gives the same pixels, counters and cycles; only the speed
+ * differs. Only the hardware model has the vector copies; the others run the baseline
+ * one whatever is set. */
+typedef enum sst1_isa {
+    SST1_ISA_BASELINE = 0,
+    SST1_ISA_AVX2 = 1,
+    SST1_ISA_AVX512 = 2
+} sst1_isa;
+
+/* Runs the copy `isa` names, or the best the CPU has below it, and stores the copy
+ * that will run in *used (which may be NULL). SST1_ERR_BAD_ARGUMENT for a value not in
+ * sst1_isa. A board starts with the best copy the CPU has. */
+sst1_result sst1_set_vector_isa(sst1_board *board, sst1_isa isa, sst1_isa *used);
+
+/* Stores the copy of the kernels the board runs in *isa. */
+sst1_result sst1_get_vector_isa(const sst1_board *board, sst1_isa *isa);
 
 /* ------------------------------------------------------------------------------ */
 /* Bus accesses: what a host's memory and PCI configuration handlers call           */

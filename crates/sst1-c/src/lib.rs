@@ -22,14 +22,14 @@
 
 #![allow(clippy::missing_safety_doc)]
 
-use sst1_board::{Board, BoardConfig, BufferKind, Model, Reference, StateError};
+use sst1_board::{Board, BoardConfig, BufferKind, Model, Reference, StateError, VectorIsa};
 use sst1_regs::{addr, RegisterBus};
 use std::ffi::{c_char, c_int, c_void, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// `SST1_API_VERSION`.
-pub const API_VERSION: u32 = 2;
+pub const API_VERSION: u32 = 3;
 /// `SST1_APERTURE_SIZE`: the 16 MiB memory aperture.
 pub const APERTURE_SIZE: u32 = 0x100_0000;
 /// `SST1_LFB_BASE`: start of the LFB region.
@@ -236,6 +236,25 @@ fn model_of(n: c_int) -> Result<Model> {
         2 => Ok(Model::Reference(Reference::DosboxStaging)),
         3 => Ok(Model::Reference(Reference::Box86)),
         _ => Err(Error::BadArgument),
+    }
+}
+
+/// The copy of the span kernels C's `sst1_isa` value `n` stands for.
+fn isa_of(n: c_int) -> Result<VectorIsa> {
+    match n {
+        0 => Ok(VectorIsa::Baseline),
+        1 => Ok(VectorIsa::Avx2),
+        2 => Ok(VectorIsa::Avx512),
+        _ => Err(Error::BadArgument),
+    }
+}
+
+/// C's `sst1_isa` value of `isa`.
+fn isa_number(isa: VectorIsa) -> c_int {
+    match isa {
+        VectorIsa::Baseline => 0,
+        VectorIsa::Avx2 => 1,
+        VectorIsa::Avx512 => 2,
     }
 }
 
@@ -564,6 +583,36 @@ pub unsafe extern "C" fn sst1_get_render_threads(
         let n = b.lock().render_threads;
         // SAFETY: NULL or valid, by the caller's promise.
         unsafe { store(threads, n) }
+    })
+}
+
+/// `sst1_set_vector_isa`.
+#[no_mangle]
+pub unsafe extern "C" fn sst1_set_vector_isa(
+    board: *mut Sst1Board,
+    isa: c_int,
+    used: *mut c_int,
+) -> c_int {
+    guard(|| {
+        // SAFETY: the caller's promise.
+        let b = unsafe { handle(board) }?;
+        let isa = isa_of(isa)?;
+        let running = b.lock().board.set_vector_isa(isa);
+        // SAFETY: NULL or valid, by the caller's promise.
+        unsafe { store_optional(used, isa_number(running)) };
+        Ok(())
+    })
+}
+
+/// `sst1_get_vector_isa`.
+#[no_mangle]
+pub unsafe extern "C" fn sst1_get_vector_isa(board: *const Sst1Board, isa: *mut c_int) -> c_int {
+    guard(|| {
+        // SAFETY: the caller's promise.
+        let b = unsafe { handle(board) }?;
+        let running = isa_number(b.lock().board.vector_isa());
+        // SAFETY: NULL or valid, by the caller's promise.
+        unsafe { store(isa, running) }
     })
 }
 

@@ -129,6 +129,7 @@ int main(void) {
 
     /* NULL boards everywhere. */
     uint32_t u32 = 0;
+    sst1_isa isa = SST1_ISA_BASELINE;
     uint16_t u16 = 0;
     uint64_t u64 = 0;
     int active = 0;
@@ -141,6 +142,8 @@ int main(void) {
     EXPECT_RC(sst1_get_model(NULL, &m), SST1_ERR_NULL);
     EXPECT_RC(sst1_set_render_threads(NULL, 1), SST1_ERR_NULL);
     EXPECT_RC(sst1_get_render_threads(NULL, &u32), SST1_ERR_NULL);
+    EXPECT_RC(sst1_set_vector_isa(NULL, SST1_ISA_BASELINE, NULL), SST1_ERR_NULL);
+    EXPECT_RC(sst1_get_vector_isa(NULL, &isa), SST1_ERR_NULL);
     EXPECT_RC(sst1_write32(NULL, 0, 0), SST1_ERR_NULL);
     EXPECT_RC(sst1_write16(NULL, 0, 0), SST1_ERR_NULL);
     EXPECT_RC(sst1_read32(NULL, 0, &u32), SST1_ERR_NULL);
@@ -162,6 +165,7 @@ int main(void) {
     EXPECT_RC(sst1_get_config(b, NULL), SST1_ERR_NULL);
     EXPECT_RC(sst1_get_model(b, NULL), SST1_ERR_NULL);
     EXPECT_RC(sst1_get_render_threads(b, NULL), SST1_ERR_NULL);
+    EXPECT_RC(sst1_get_vector_isa(b, NULL), SST1_ERR_NULL);
     EXPECT_RC(sst1_read32(b, 0, NULL), SST1_ERR_NULL);
     EXPECT_RC(sst1_read16(b, 0, NULL), SST1_ERR_NULL);
     EXPECT_RC(sst1_read(b, 0, 4, NULL), SST1_ERR_NULL);
@@ -191,6 +195,19 @@ int main(void) {
     EXPECT_RC(sst1_set_render_threads(b, SST1_MAX_RENDER_THREADS + 1), SST1_ERR_BAD_ARGUMENT);
     EXPECT_RC(sst1_get_render_threads(b, &u32), SST1_OK);
     EXPECT(u32 == 8);
+
+    /* Copies of the kernels: capped by the CPU's, never above what was asked. */
+    sst1_isa best, used;
+    EXPECT_RC(sst1_get_vector_isa(b, &best), SST1_OK);
+    EXPECT(best >= SST1_ISA_BASELINE && best <= SST1_ISA_AVX512);
+    EXPECT_RC(sst1_set_vector_isa(b, SST1_ISA_BASELINE, &used), SST1_OK);
+    EXPECT(used == SST1_ISA_BASELINE);
+    EXPECT_RC(sst1_get_vector_isa(b, &isa), SST1_OK);
+    EXPECT(isa == SST1_ISA_BASELINE);
+    EXPECT_RC(sst1_set_vector_isa(b, (sst1_isa)3, &used), SST1_ERR_BAD_ARGUMENT);
+    EXPECT_RC(sst1_set_vector_isa(b, SST1_ISA_AVX512, NULL), SST1_OK);
+    EXPECT_RC(sst1_get_vector_isa(b, &isa), SST1_OK);
+    EXPECT(isa == best);
 
     /* Offsets, alignment and sizes. */
     EXPECT_RC(sst1_write32(b, SST1_APERTURE_SIZE, 0), SST1_ERR_BAD_OFFSET);

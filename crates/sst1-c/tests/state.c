@@ -92,7 +92,7 @@ int main(void) {
     for (int r = SST1_ERR_BAD_STATE; r <= SST1_ERR_STATE_MISMATCH; r++) {
         EXPECT(strcmp(sst1_error_string((sst1_result)r), "unknown error") != 0);
     }
-    EXPECT(sst1_api_version() == 2);
+    EXPECT(sst1_api_version() == 3);
 
     sst1_config config = {.fbi_mb = 4, .tmus = 1, .tmu_mb = 2};
     sst1_board *a = NULL, *b = NULL;
