@@ -146,3 +146,24 @@ fn v_retrace_counts_up_between_syncs() {
     assert!((352..=354).contains(&longest), "{longest}");
     assert!(in_retrace(&mut p));
 }
+
+/// Each video register alone retimes the frame: after the mode is set, a longer line
+/// (`hSync`'s back porch 720 instead of 704 VCLKs) or more lines (`vSync` 2/539) alone
+/// make the frame longer, each write by itself.
+///
+/// Source: spec 10 (the line and frame lengths).
+#[test]
+fn each_video_register_alone_retimes_the_frame() {
+    let mut p = Emulator::new();
+    set_mode(&mut p, true);
+    let before = p.board().timing().frame().period;
+    p.write(addr::H_SYNC, 0x02d0_0060);
+    let longer_lines = p.board().timing().frame().period;
+    assert!(longer_lines > before, "{longer_lines} after {before}");
+    p.write(addr::V_SYNC, 0x021b_0002);
+    let more_lines = p.board().timing().frame().period;
+    assert!(
+        more_lines > longer_lines,
+        "{more_lines} after {longer_lines}"
+    );
+}

@@ -44,6 +44,9 @@ impl Route {
     const TREX: u8 = 8;
     /// The FBI stores it.
     const FBI: u8 = 16;
+    /// The board follows it up after the FBI stores it: the video timing or the memory
+    /// FIFO ([`Board::after_video_write`]).
+    const VIDEO: u8 = 32;
 
     const fn of(offset: u32) -> u8 {
         let Some(desc) = map::desc_const(offset) else {
@@ -61,6 +64,17 @@ impl Route {
         }
         if desc.chips.contains(map::Chips::FBI) {
             route |= Self::FBI;
+        }
+        if matches!(
+            offset,
+            addr::DAC_DATA
+                | addr::H_SYNC
+                | addr::V_SYNC
+                | addr::FBI_INIT0
+                | addr::FBI_INIT1
+                | addr::FBI_INIT4
+        ) {
+            route |= Self::VIDEO;
         }
         route
     }
@@ -134,7 +148,16 @@ impl Board {
                 }
             }
         }
-        // The frame's timing follows the video registers and the DAC (spec 10).
+        if route & Route::VIDEO != 0 {
+            self.after_video_write(offset, value);
+        }
+    }
+
+    /// The frame's timing follows the video registers and the DAC (spec 10), the memory
+    /// FIFO `fbiInit0` and `fbiInit4` (out of line: the other writes skip it with one
+    /// test of their route).
+    #[inline(never)]
+    fn after_video_write(&mut self, offset: u32, value: u32) {
         match offset {
             addr::DAC_DATA => {
                 self.dac.write(value);
@@ -261,7 +284,7 @@ impl Board {
 impl RegisterBus for Board {
     fn write32(&mut self, bus_addr: u32, value: u32) {
         // The one run-time choice of model: every stage below is compiled for it.
-        with_model!(self.model.kind(), M => self.write32_as::<M>(bus_addr, value))
+        with_model!(self.kind, M => self.write32_as::<M>(bus_addr, value))
     }
 
     fn read32(&mut self, bus_addr: u32) -> u32 {

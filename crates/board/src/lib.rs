@@ -115,6 +115,8 @@ pub struct Board {
     diagnostics: Diagnostics,
     /// The model the chips run (their profiles are its profile).
     model: Model,
+    /// `model.kind()`, which every bus access dispatches on (kept with `model`).
+    kind: model::Kind,
     /// The modelled hardware time.
     timing: Timing,
     /// The DAC's PLL registers (the pixel clock), as `dacData` writes set them.
@@ -137,6 +139,7 @@ impl Board {
             init_enable: 0,
             diagnostics: Diagnostics::default(),
             model: Model::Hardware,
+            kind: Model::Hardware.kind(),
             timing: Timing::default(),
             dac: video::Dac::default(),
             timing_on: true,
@@ -173,6 +176,7 @@ impl Board {
     pub fn set_model(&mut self, model: Model) {
         let profile = model.profile();
         self.model = model;
+        self.kind = model.kind();
         self.fbi.set_profile(profile.pixel);
         for t in &mut self.tmus {
             t.set_profile(profile.texel);
@@ -238,7 +242,7 @@ impl Board {
     /// The copy of the span kernels this board's triangles run: [`Board::vector_isa`] for
     /// the hardware model, the baseline copy for the others (which have no other).
     pub fn kernel_isa(&self) -> VectorIsa {
-        let simd = model::with_model!(self.model.kind(), M => <M as pixelfx::PixelModel>::SIMD);
+        let simd = model::with_model!(self.kind, M => <M as pixelfx::PixelModel>::SIMD);
         if simd {
             self.vector_isa()
         } else {

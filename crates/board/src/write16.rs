@@ -25,7 +25,7 @@ impl Board {
     /// texture-memory write, which the SST-1 takes only 32 bits wide, is ignored and
     /// counted as [`Diagnostic::NarrowWrite`]. Either is one bus write in time.
     pub fn write16(&mut self, bus_addr: u32, value: u16) {
-        with_model!(self.model.kind(), M => self.write16_as::<M>(bus_addr, value))
+        with_model!(self.kind, M => self.write16_as::<M>(bus_addr, value))
     }
 
     fn write16_as<M: ChipModel>(&mut self, bus_addr: u32, value: u16) {
