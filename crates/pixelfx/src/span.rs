@@ -590,14 +590,17 @@ fn kill_where<const L: usize>(
     kill: Kill,
     fails: impl Fn(usize) -> bool,
 ) {
-    let mut killed = 0u32;
-    for (i, a) in alive.iter_mut().enumerate().take(n) {
+    let n = n.min(L);
+    let mut killed_lanes = [false; L];
+    for i in 0..n {
         // `&`, not `&&`: every lane's test is evaluated (each is a pure read), so the
-        // loop has no branch per lane.
-        let f = *a & fails(i);
-        killed += f as u32;
-        *a &= !f;
+        // loop has no branch per lane; the count is a second loop, so that both
+        // vectorise.
+        let f = alive[i] & fails(i);
+        killed_lanes[i] = f;
+        alive[i] &= !f;
     }
+    let killed = killed_lanes[..n].iter().map(|&k| u32::from(k)).sum::<u32>();
     if killed > 0 {
         stats.kill_many(kill, killed);
     }

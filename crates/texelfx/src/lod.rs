@@ -7,6 +7,7 @@
 //! `[lodmin, min(lodmax, 8.0)]`.
 
 use crate::{LodCalc, LodDither};
+use sst1_regs::lanes::LANES;
 use sst1_regs::TLod;
 
 /// `floor(256 * log2(1 + i / 128))`: fraction of a base-2 log from the 7 mantissa bits below
@@ -194,6 +195,44 @@ pub(crate) fn reciplog_log_keyed(fractions: &[u32; MANTISSA_KEYS], value: i64) -
         1000 << 8
     } else {
         log
+    }
+}
+
+/// [`reciplog_log_keyed`] of the first `n` of `w`, into `out`, in three passes that
+/// each vectorise (the mantissa keys and exponents, the table gather, the sum), which
+/// the one loop of the keyed form does not: the same integers (test
+/// `reciplog_log_lanes_equal_the_keyed_form`).
+#[inline(always)]
+pub(crate) fn reciplog_log_lanes(
+    fractions: &[u32; MANTISSA_KEYS],
+    w: &[i64; LANES],
+    n: usize,
+    out: &mut [i32; LANES],
+) {
+    let n = n.min(LANES);
+    let mut keys = [0u32; LANES];
+    let mut zero = [false; LANES];
+    for i in 0..n {
+        let mag = w[i].wrapping_abs() as u64;
+        let high = mag & 0xffff_0000_0000 != 0;
+        let temp = if high { (mag >> 16) as u32 } else { mag as u32 };
+        let lz = temp.leading_zeros();
+        let exponent = if high { -16 } else { 0 } + lz as i32;
+        let norm = temp.wrapping_shl(lz);
+        keys[i] = (norm >> 14) & (MANTISSA_KEYS as u32 - 1);
+        zero[i] = temp == 0;
+        out[i] = (exponent + 1) << 8;
+    }
+    let mut fraction = [0u32; LANES];
+    for i in 0..n {
+        fraction[i] = fractions[keys[i] as usize];
+    }
+    for i in 0..n {
+        out[i] = if zero[i] {
+            1000 << 8
+        } else {
+            out[i] - fraction[i] as i32
+        };
     }
 }
 
@@ -528,9 +567,31 @@ mod tests {
             }
         }
         let fractions = reciplog_log_fractions();
-        for v in values {
-            let log = reciplog_dosbox(v).1;
-            assert_eq!(reciplog_log_keyed(fractions, v), log, "{v:#x}");
+        for v in &values {
+            let log = reciplog_dosbox(*v).1;
+            assert_eq!(reciplog_log_keyed(fractions, *v), log, "{v:#x}");
+        }
+        reciplog_log_lanes_equal_the_keyed_form(&values);
+    }
+
+    /// `reciplog_log_lanes` against `reciplog_log_keyed`, a chunk of lanes at a time,
+    /// with every count of live lanes (the lanes past it left alone).
+    fn reciplog_log_lanes_equal_the_keyed_form(values: &[i64]) {
+        let fractions = reciplog_log_fractions();
+        for (k, chunk) in values.chunks(LANES).enumerate() {
+            let n = chunk.len().saturating_sub(k % 3);
+            let mut w = [0i64; LANES];
+            w[..chunk.len()].copy_from_slice(chunk);
+            let mut out = [7i32; LANES];
+            reciplog_log_lanes(fractions, &w, n, &mut out);
+            for i in 0..LANES {
+                let want = if i < n {
+                    reciplog_log_keyed(fractions, w[i])
+                } else {
+                    7
+                };
+                assert_eq!(out[i], want, "lane {i} of {n}: {:#x}", w[i]);
+            }
         }
     }
 

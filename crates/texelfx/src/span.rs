@@ -525,9 +525,12 @@ impl Tmu {
                 LodCalc::Dosbox => {
                     // Source: DOSBox Staging `TEXTURE_PIPELINE` (as `lod::w_term`).
                     let fractions = lod::reciplog_log_fractions();
-                    w_terms(w, n, lod_from, lod, |w| {
-                        lod::reciplog_log_keyed(fractions, w)
-                    })
+                    match lod_from {
+                        Some(from) => {
+                            lod[..n].fill(lod::reciplog_log_keyed(fractions, w[from % LANES]))
+                        }
+                        None => lod::reciplog_log_lanes(fractions, w, n, lod),
+                    }
                 }
                 LodCalc::Box86 => w_terms(w, n, lod_from, lod, |w| lod::w_term(LodCalc::Box86, w)),
             }
