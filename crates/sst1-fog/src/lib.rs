@@ -33,6 +33,10 @@ pub struct FogTable {
     delta: [u8; 64],
     /// [`DELTA_MASK_SST1`] or [`DELTA_MASK_VOODOO2`].
     delta_mask: u8,
+    /// Each entry as one word for [`FogTable::blend`]: the factor in bits 15:0, the
+    /// masked delta in bits 31:16 (one 32-bit load a lane, which a vector gather does;
+    /// there is no gather of bytes). Kept by [`FogTable::write`].
+    words: [u32; 64],
 }
 
 impl Default for FogTable {
@@ -53,6 +57,7 @@ impl FogTable {
             fog: [0; 64],
             delta: [0; 64],
             delta_mask,
+            words: [0; 64],
         }
     }
 
@@ -75,6 +80,10 @@ impl FogTable {
         self.fog[n] = f0;
         self.delta[n + 1] = d1;
         self.fog[n + 1] = f1;
+        for i in [n, n + 1] {
+            let delta = self.delta[i] & self.delta_mask;
+            self.words[i] = u32::from(self.fog[i]) | u32::from(delta) << 16;
+        }
     }
 
     /// Entry `i` (taken modulo 64) as `(fog blending factor, delta)`, unmasked.
@@ -91,8 +100,8 @@ impl FogTable {
     pub fn blend(&self, wfloat: u16) -> u16 {
         let index = (wfloat >> 10) as usize; // 0..64
         let frac = (wfloat >> 2) & 0xff;
-        let fog = self.fog[index & 63] as u16;
-        let delta = (self.delta[index & 63] & self.delta_mask) as u16;
+        let word = self.words[index & 63];
+        let (fog, delta) = (word as u16, (word >> 16) as u16);
         fog + ((delta * frac) >> 10)
     }
 }
