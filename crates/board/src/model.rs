@@ -14,8 +14,9 @@
 //!   per pixel. For experiments; slow.
 //!
 //! The four fixed models run the span kernels (`pixelfx::span`), each instance compiled
-//! with its own switches (the hardware model's again with AVX2 and with AVX-512, `pixelfx::isa`); the custom
-//! model runs the reference path, as `Board::set_generic_path` makes any model do.
+//! with its own switches (the hardware model's again with AVX2 and with AVX-512,
+//! `pixelfx::isa`); the custom model runs the reference path, as
+//! `Board::set_generic_path` makes any model do.
 //!
 //! A [`Board`](crate::Board) holds a [`Model`] and instantiates its bus once per model
 //! (`with_model!`): the match on the model runs once per bus access, never inside a

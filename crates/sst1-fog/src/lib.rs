@@ -27,16 +27,13 @@ pub const DELTA_MASK_VOODOO2: u8 = 0xfc;
 /// The 64-entry fog table as loaded through the 32 `fogTable` registers.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FogTable {
-    /// Fog blending factors, 8.0.
-    fog: [u8; 64],
-    /// Deltas to the next factor, 6.2, stored as written (the mask applies on use).
-    delta: [u8; 64],
+    /// Each entry as one word: the fog blending factor (8.0) in bits 7:0, the delta to
+    /// the next factor (6.2, as written: the mask applies on use) in bits 23:16. One
+    /// 32-bit load per lane in [`FogTable::blend`], which a vector gather does (there is
+    /// no gather of bytes).
+    entries: [u32; 64],
     /// [`DELTA_MASK_SST1`] or [`DELTA_MASK_VOODOO2`].
     delta_mask: u8,
-    /// Each entry as one word for [`FogTable::blend`]: the factor in bits 15:0, the
-    /// masked delta in bits 31:16 (one 32-bit load a lane, which a vector gather does;
-    /// there is no gather of bytes). Kept by [`FogTable::write`].
-    words: [u32; 64],
 }
 
 impl Default for FogTable {
@@ -54,10 +51,8 @@ impl FogTable {
     /// An all-zero table whose deltas are masked with `delta_mask` on use.
     pub const fn with_delta_mask(delta_mask: u8) -> Self {
         Self {
-            fog: [0; 64],
-            delta: [0; 64],
+            entries: [0; 64],
             delta_mask,
-            words: [0; 64],
         }
     }
 
@@ -76,19 +71,14 @@ impl FogTable {
         }
         let [d0, f0, d1, f1] = value.to_le_bytes();
         let n = 2 * word;
-        self.delta[n] = d0;
-        self.fog[n] = f0;
-        self.delta[n + 1] = d1;
-        self.fog[n + 1] = f1;
-        for i in [n, n + 1] {
-            let delta = self.delta[i] & self.delta_mask;
-            self.words[i] = u32::from(self.fog[i]) | u32::from(delta) << 16;
-        }
+        self.entries[n] = u32::from(f0) | u32::from(d0) << 16;
+        self.entries[n + 1] = u32::from(f1) | u32::from(d1) << 16;
     }
 
     /// Entry `i` (taken modulo 64) as `(fog blending factor, delta)`, unmasked.
     pub fn entry(&self, i: usize) -> (u8, u8) {
-        (self.fog[i & 63], self.delta[i & 63])
+        let entry = self.entries[i & 63];
+        (entry as u8, (entry >> 16) as u8)
     }
 
     /// The fog blending factor for the floating-point depth `wfloat`.
@@ -100,9 +90,10 @@ impl FogTable {
     pub fn blend(&self, wfloat: u16) -> u16 {
         let index = (wfloat >> 10) as usize; // 0..64
         let frac = (wfloat >> 2) & 0xff;
-        let word = self.words[index & 63];
-        let (fog, delta) = (word as u16, (word >> 16) as u16);
-        fog + ((delta * frac) >> 10)
+        let entry = self.entries[index & 63];
+        let fog = entry & 0xff;
+        let delta = (entry >> 16) & u32::from(self.delta_mask);
+        (fog + ((delta * u32::from(frac)) >> 10)) as u16
     }
 }
 

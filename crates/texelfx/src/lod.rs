@@ -184,18 +184,28 @@ pub(crate) fn reciplog_log_fractions() -> &'static [u32; MANTISSA_KEYS] {
 /// value (test `branch_free_reciplog_log`).
 #[inline(always)]
 pub(crate) fn reciplog_log_keyed(fractions: &[u32; MANTISSA_KEYS], value: i64) -> i32 {
+    let (key, whole, zero) = reciplog_log_key(value);
+    if zero {
+        1000 << 8
+    } else {
+        whole - fractions[key as usize] as i32
+    }
+}
+
+/// What [`reciplog_in`]'s log takes from `value` besides the table: the mantissa key
+/// (bits 30:14 of the magnitude normalised to bit 31), the whole part (`exponent + 1`,
+/// 8.8) the key's fraction is taken from, and whether the value is 0 (whose log is
+/// `1000 << 8`).
+#[inline(always)]
+fn reciplog_log_key(value: i64) -> (u32, i32, bool) {
     let mag = value.wrapping_abs() as u64;
     let high = mag & 0xffff_0000_0000 != 0;
     let temp = if high { (mag >> 16) as u32 } else { mag as u32 };
     let lz = temp.leading_zeros();
     let exponent = if high { -16 } else { 0 } + lz as i32;
     let norm = temp.wrapping_shl(lz);
-    let log = ((exponent + 1) << 8) - fractions[(norm >> 14) as usize & (MANTISSA_KEYS - 1)] as i32;
-    if temp == 0 {
-        1000 << 8
-    } else {
-        log
-    }
+    let key = (norm >> 14) & (MANTISSA_KEYS as u32 - 1);
+    (key, (exponent + 1) << 8, temp == 0)
 }
 
 /// [`reciplog_log_keyed`] of the first `n` of `w`, into `out`, in three passes that
@@ -213,15 +223,10 @@ pub(crate) fn reciplog_log_lanes(
     let mut keys = [0u32; LANES];
     let mut zero = [false; LANES];
     for i in 0..n {
-        let mag = w[i].wrapping_abs() as u64;
-        let high = mag & 0xffff_0000_0000 != 0;
-        let temp = if high { (mag >> 16) as u32 } else { mag as u32 };
-        let lz = temp.leading_zeros();
-        let exponent = if high { -16 } else { 0 } + lz as i32;
-        let norm = temp.wrapping_shl(lz);
-        keys[i] = (norm >> 14) & (MANTISSA_KEYS as u32 - 1);
-        zero[i] = temp == 0;
-        out[i] = (exponent + 1) << 8;
+        let (key, whole, is_zero) = reciplog_log_key(w[i]);
+        keys[i] = key;
+        out[i] = whole;
+        zero[i] = is_zero;
     }
     let mut fraction = [0u32; LANES];
     for i in 0..n {

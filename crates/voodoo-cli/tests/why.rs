@@ -143,15 +143,24 @@ fn depth_killed_pixel_names_the_depth_test() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
-/// A board set up as the conformance traces do (640x480, two colour buffers and an aux
-/// buffer), a fast fill, then the same flat triangle twice: first at Z 0x1234, then at
-/// Z 0x2000, which the "less" depth test kills.
-const HAND_BUILT: &str = "config tmus 1\n\
+/// A one-TMU board set up as the conformance traces do (640x480, two colour buffers and
+/// an aux buffer): the start of the hand-built traces below.
+macro_rules! glide_init {
+    () => {
+        "config tmus 1\n\
 pci 0x40 0x3\n\
 w 0x000210 0x7\nw 0x000214 0x1a2\nw 0x000210 0x1\nw 0x000220 0x02c00060\n\
 w 0x000224 0x020b0002\nw 0x000208 0x00120032\nw 0x00020c 0x01e0027f\n\
 w 0x000218 0x1874b040\nw 0x00021c 0x77de4000\nw 0x000200 0x1\nw 0x000214 0x002000a2\n\
-w 0x000118 0x280\nw 0x00011c 0x1e0\n\
+"
+    };
+}
+
+/// [`glide_init!`]'s board, a fast fill, then the same flat triangle twice: first at
+/// Z 0x1234, then at Z 0x2000, which the "less" depth test kills.
+const HAND_BUILT: &str = concat!(
+    glide_init!(),
+    "w 0x000118 0x280\nw 0x00011c 0x1e0\n\
 w 0x000104 0x0\nw 0x000108 0x0\nw 0x00010c 0x0\n\
 w 0x000148 0x0\nw 0x000130 0xffff\nw 0x000110 0x631\nw 0x000124 0x0\n\
 w 0x000008 0x140\nw 0x00000c 0xa0\nw 0x000010 0x640\nw 0x000014 0x140\n\
@@ -163,7 +172,8 @@ w 0x000060 0x0\nw 0x000064 0x0\nw 0x000068 0x0\nw 0x00006c 0x0\nw 0x000070 0x0\n
 w 0x000080 0x0\n\
 w 0x00002c 0x2000000\nw 0x000080 0x0\n\
 dump front hand_front.raw\n\
-dump depth hand_depth.raw\n";
+dump depth hand_depth.raw\n"
+);
 
 #[test]
 fn hand_built_triangle_stages_are_the_spec_values() {
@@ -299,21 +309,19 @@ fn bad_input_is_refused_with_a_message() {
     std::fs::remove_dir_all(dir).unwrap();
 }
 
-/// The Glide init of [`HAND_BUILT`], then a triangle drawn with clipping off over rows
+/// [`glide_init!`]'s board, then a triangle drawn with clipping off over rows
 /// 470 to 500 of the front buffer (`fbzMode` 0x200: RGB writes only), whose rows 480 and
 /// up are the first rows of the back buffer (the buffers are 150 pages, 480 rows, apart).
-const PAST_THE_LAST_ROW: &str = "config tmus 1\n\
-pci 0x40 0x3\n\
-w 0x000210 0x7\nw 0x000214 0x1a2\nw 0x000210 0x1\nw 0x000220 0x02c00060\n\
-w 0x000224 0x020b0002\nw 0x000208 0x00120032\nw 0x00020c 0x01e0027f\n\
-w 0x000218 0x1874b040\nw 0x00021c 0x77de4000\nw 0x000200 0x1\nw 0x000214 0x002000a2\n\
-w 0x000104 0x0\nw 0x000108 0x0\nw 0x00010c 0x0\nw 0x000110 0x200\n\
+const PAST_THE_LAST_ROW: &str = concat!(
+    glide_init!(),
+    "w 0x000104 0x0\nw 0x000108 0x0\nw 0x00010c 0x0\nw 0x000110 0x200\n\
 w 0x000008 0x640\nw 0x00000c 0x1d60\nw 0x000010 0xc80\nw 0x000014 0x1d60\n\
 w 0x000018 0x960\nw 0x00001c 0x1f40\n\
 w 0x000020 0x64000\nw 0x000024 0x32000\nw 0x000028 0xc8000\nw 0x000030 0xff000\n\
 w 0x000080 0x0\n\
 dump front past_front.raw\n\
-dump back past_back.raw\n";
+dump back past_back.raw\n"
+);
 
 #[test]
 fn beyond_dump_follows_rows_past_the_last() {
