@@ -40,7 +40,8 @@ impl Route {
     const INIT: u8 = 4;
     /// Any of the three above: the write may be refused.
     const CHECKED: u8 = Self::RESERVED | Self::READ_ONLY | Self::INIT;
-    /// The TMUs store it.
+    /// The TMUs store it: the register table sends it to them and they keep something
+    /// of it ([`texelfx::Tmu::stores`]; they keep nothing of the vertices and commands).
     const TREX: u8 = 8;
     /// The FBI stores it.
     const FBI: u8 = 16;
@@ -59,7 +60,7 @@ impl Route {
         if matches!(offset, addr::FBI_INIT0..=addr::FBI_INIT3 | addr::FBI_INIT4) {
             route |= Self::INIT;
         }
-        if desc.chips.contains(map::Chips::TREX) {
+        if desc.chips.contains(map::Chips::TREX) && texelfx::Tmu::stores(offset) {
             route |= Self::TREX;
         }
         if desc.chips.contains(map::Chips::FBI) {
@@ -349,7 +350,12 @@ mod tests {
                     let writable = d.access.contains(map::Access::WRITE);
                     assert_eq!(route & Route::READ_ONLY == 0, writable, "{offset:#x}");
                     let trex = d.chips.contains(map::Chips::TREX);
-                    assert_eq!(route & Route::TREX != 0, trex, "{offset:#x}");
+                    let stored = texelfx::Tmu::stores(offset);
+                    assert!(
+                        trex || !stored,
+                        "{offset:#x}: a TMU keeps a register it is not sent"
+                    );
+                    assert_eq!(route & Route::TREX != 0, trex && stored, "{offset:#x}");
                     let fbi = d.chips.contains(map::Chips::FBI);
                     assert_eq!(route & Route::FBI != 0, fbi, "{offset:#x}");
                 }

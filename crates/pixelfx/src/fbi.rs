@@ -62,6 +62,10 @@ pub struct Fbi {
     /// The lanes of packed chunks, kept from triangle to triangle so that a triangle does
     /// not build them anew (`crate::raster::Pack`; nothing in them outlives a triangle).
     pub(crate) pack: Option<Box<crate::raster::Pack>>,
+    /// The constants the span kernels spread over their lanes, kept from triangle to
+    /// triangle and rebuilt when the registers they come from change
+    /// (`crate::span::TriangleConsts::update`).
+    pub(crate) consts: Option<Box<crate::span::TriangleConsts>>,
 }
 
 /// How many triangle pixels (inside the clip rectangle) each path shaded: what
@@ -116,6 +120,7 @@ impl Fbi {
             isa: crate::VectorIsa::best(),
             watch: None,
             pack: None,
+            consts: None,
         }
     }
 

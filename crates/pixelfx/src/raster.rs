@@ -190,7 +190,13 @@ impl Fbi {
             && mode.enable_stipple()
             && !mode.enable_stipple_pattern();
         let mut copy = per_triangle.then(|| box86::StippleCopy::new(st.stipple));
-        let consts = SPANS.then(|| TriangleConsts::new(st));
+        let consts = SPANS.then(|| match self.consts.take() {
+            Some(mut c) => {
+                c.update(st);
+                c
+            }
+            None => Box::new(TriangleConsts::new(st)),
+        });
         // Bands need rows that depend on nothing but themselves: no per-triangle stipple
         // copy (stepped row by row), and a texel source that can be shared
         // ([`TexelSource::share`], asked once the triangle is known to be large).
@@ -204,7 +210,7 @@ impl Fbi {
         // stipple copy, which is stepped span by span).
         let mut pack = (SPANS && copy.is_none()).then(|| {
             let mut p = self.pack.take().unwrap_or_else(|| Box::new(Pack::new()));
-            p.start(st);
+            p.start(st, &self.params);
             p
         });
         let mut rows = Vec::new();
@@ -239,7 +245,15 @@ impl Fbi {
             if threaded {
                 rows.push(row);
             } else {
-                self.shade_or_pack::<M, T>(st, &row, a, &mut copy, tex, consts.as_ref(), &mut pack);
+                self.shade_or_pack::<M, T>(
+                    st,
+                    &row,
+                    a,
+                    &mut copy,
+                    tex,
+                    consts.as_deref(),
+                    &mut pack,
+                );
             }
         }
         let banded = threaded
@@ -248,7 +262,15 @@ impl Fbi {
                 .is_some_and(|c| self.shade_rows_threaded::<M, T>(st, &rows, a, c, tex));
         if threaded && !banded {
             for row in &rows {
-                self.shade_or_pack::<M, T>(st, row, a, &mut copy, tex, consts.as_ref(), &mut pack);
+                self.shade_or_pack::<M, T>(
+                    st,
+                    row,
+                    a,
+                    &mut copy,
+                    tex,
+                    consts.as_deref(),
+                    &mut pack,
+                );
             }
         }
         if let (Some(p), Some(consts)) = (&mut pack, &consts) {
@@ -256,6 +278,9 @@ impl Fbi {
         }
         if pack.is_some() {
             self.pack = pack;
+        }
+        if consts.is_some() {
+            self.consts = consts;
         }
     }
 
@@ -277,10 +302,10 @@ impl Fbi {
     ) {
         if let (Some(p), Some(c)) = (pack.as_mut(), consts) {
             match p.admits(row, &self.fb) {
-                Admit::Now => return p.push(row, &self.params, a, self.fb.layout.row_pixels),
+                Admit::Now => return p.push(row, a, self.fb.layout.row_pixels),
                 Admit::AfterShading => {
                     self.shade_pack::<M, T>(st, p, tex, c);
-                    return p.push(row, &self.params, a, self.fb.layout.row_pixels);
+                    return p.push(row, a, self.fb.layout.row_pixels);
                 }
                 Admit::Never => self.shade_pack::<M, T>(st, p, tex, c),
             }
@@ -630,10 +655,11 @@ impl Pack {
         }
     }
 
-    /// Empty, for a triangle drawn with `st`.
-    fn start(&mut self, st: &DrawState) {
+    /// Empty, for a triangle drawn with `st` from `params`.
+    fn start(&mut self, st: &DrawState, params: &TriangleParams) {
         self.lanes.colour_base = st.dest;
         self.lanes.aux_base = st.aux;
+        self.lanes.params = *params;
         self.clear();
     }
 
@@ -677,9 +703,8 @@ impl Pack {
     /// Add `row`'s pixels (admitted: [`Pack::admits`]) as lanes: `(ax, ay)` is vertex
     /// A's pixel, `pitch` the frame buffer's row pitch in words.
     #[inline(always)]
-    fn push(&mut self, row: &Row, params: &TriangleParams, (ax, ay): (i32, i32), pitch: u32) {
+    fn push(&mut self, row: &Row, (ax, ay): (i32, i32), pitch: u32) {
         let dy = row.y - ay;
-        let it = Iterated::at(params, row.start - ax, dy);
         let len = (row.stop - row.start) as usize;
         let first = row.scry as usize * pitch as usize + row.start as usize;
         let l = &mut self.lanes;
@@ -693,12 +718,6 @@ impl Pack {
             l.prow[j] = row.prow;
             l.first[j] = k == 0;
             l.word[j] = first + k;
-            let k = k as i32;
-            for c in 0..4 {
-                l.argb[c][j] = it.argb[c].wrapping_add(params.dx[c].wrapping_mul(k));
-            }
-            l.z[j] = it.z.wrapping_add(params.dzdx.wrapping_mul(k));
-            l.w[j] = it.w.wrapping_add(params.dwdx.wrapping_mul(i64::from(k)));
         }
         l.n += len;
         self.words = (self.words.0.min(first), self.words.1.max(first + len - 1));

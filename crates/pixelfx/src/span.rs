@@ -324,10 +324,10 @@ pub(crate) struct Packed {
     /// First word of the colour buffer and of the aux buffer, if there is one.
     pub colour_base: usize,
     pub aux_base: Option<usize>,
-    /// Raw iterators.
-    pub argb: [[i32; PACK]; 4],
-    pub z: [i32; PACK],
-    pub w: [i64; PACK],
+    /// The triangle's start values and gradients: a lane's raw iterators are
+    /// `start + dx * d/dx + dy * d/dy` at its offsets (as [`Iterated::at`]), computed
+    /// for all lanes at once when the chunk is shaded.
+    pub params: TriangleParams,
 }
 
 impl Packed {
@@ -344,10 +344,18 @@ impl Packed {
             word: [0; PACK],
             colour_base: 0,
             aux_base: None,
-            argb: [[0; PACK]; 4],
-            z: [0; PACK],
-            w: [0; PACK],
+            params: TriangleParams::default(),
         }
+    }
+
+    /// A 32-bit iterator at every lane, as [`Iterated::at`] computes it.
+    #[inline(always)]
+    fn linear(&self, start: i32, gx: i32, gy: i32) -> [i32; PACK] {
+        lanes(|i| {
+            start
+                .wrapping_add(self.dy[i].wrapping_mul(gy))
+                .wrapping_add(self.dx[i].wrapping_mul(gx))
+        })
     }
 
     #[inline(always)]
@@ -388,17 +396,22 @@ impl Place<PACK> for Packed {
 
     #[inline(always)]
     fn colour(&self, c: usize) -> [i32; PACK] {
-        self.argb[c]
+        let p = &self.params;
+        self.linear(p.start[c], p.dx[c], p.dy[c])
     }
 
     #[inline(always)]
     fn z(&self) -> [i32; PACK] {
-        self.z
+        let p = &self.params;
+        self.linear(p.start_z, p.dzdx, p.dzdy)
     }
 
     #[inline(always)]
     fn w(&self, i: usize) -> i64 {
-        self.w[i % PACK]
+        let (p, i) = (&self.params, i % PACK);
+        p.start_w
+            .wrapping_add(i64::from(self.dy[i]).wrapping_mul(p.dwdy))
+            .wrapping_add(i64::from(self.dx[i]).wrapping_mul(p.dwdx))
     }
 
     #[inline(always)]
@@ -485,7 +498,7 @@ impl<const L: usize> ColourLanes<L> {
 }
 
 /// What every chunk of a triangle reads and no stage changes: the constant colours
-/// spread over the lanes, built once per triangle.
+/// spread over the lanes.
 pub(crate) struct TriangleLanes<const L: usize> {
     color0: ColourLanes<L>,
     color1: ColourLanes<L>,
@@ -496,13 +509,32 @@ pub(crate) struct TriangleLanes<const L: usize> {
 }
 
 impl<const L: usize> TriangleLanes<L> {
-    pub(crate) fn new(st: &DrawState) -> Self {
+    fn new(key: &LaneKey) -> Self {
         Self {
-            color0: ColourLanes::splat(st.color0),
-            color1: ColourLanes::splat(st.color1),
-            za_depth: [(st.za_color & 0xffff) as i32; L],
+            color0: ColourLanes::splat(key.color0),
+            color1: ColourLanes::splat(key.color1),
+            za_depth: [key.za_depth; L],
             zero: [0; L],
             zero_colour: ColourLanes::ZERO,
+        }
+    }
+}
+
+/// The registers [`TriangleLanes`] spread over the lanes: `color0`, `color1` and
+/// `zaColor`'s depth.
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct LaneKey {
+    color0: Rgba,
+    color1: Rgba,
+    za_depth: i32,
+}
+
+impl LaneKey {
+    fn of(st: &DrawState) -> Self {
+        Self {
+            color0: st.color0,
+            color1: st.color1,
+            za_depth: (st.za_color & 0xffff) as i32,
         }
     }
 }
@@ -515,10 +547,12 @@ pub const NARROW: usize = 8;
 /// (fewer run as narrow chunks).
 const WIDE_FROM: usize = 40;
 
-/// The constants of [`TriangleLanes`] for both chunk widths; the wide ones are built
-/// when a chunk first needs them (a small triangle has none).
+/// The constants of [`TriangleLanes`] for every chunk width; the wide ones are built
+/// when a chunk first needs them (a small triangle has none). The FBI keeps them from
+/// one triangle to the next ([`TriangleConsts::update`]), so that a triangle in the
+/// constant colours of the one before builds nothing.
 pub(crate) struct TriangleConsts {
-    st: DrawState,
+    key: LaneKey,
     wide: std::sync::OnceLock<Box<TriangleLanes<LANES>>>,
     narrow: TriangleLanes<NARROW>,
     packed: TriangleLanes<PACK>,
@@ -526,18 +560,34 @@ pub(crate) struct TriangleConsts {
 
 impl TriangleConsts {
     pub(crate) fn new(st: &DrawState) -> Self {
+        let key = LaneKey::of(st);
         Self {
-            st: *st,
+            key,
             wide: std::sync::OnceLock::new(),
-            narrow: TriangleLanes::new(st),
-            packed: TriangleLanes::new(st),
+            narrow: TriangleLanes::new(&key),
+            packed: TriangleLanes::new(&key),
+        }
+    }
+
+    /// The constants of a triangle drawn with `st`: rebuilt where its constant colours
+    /// differ from the last triangle's.
+    pub(crate) fn update(&mut self, st: &DrawState) {
+        let key = LaneKey::of(st);
+        if key == self.key {
+            return;
+        }
+        self.key = key;
+        self.narrow = TriangleLanes::new(&key);
+        self.packed = TriangleLanes::new(&key);
+        if let Some(wide) = self.wide.get_mut() {
+            **wide = TriangleLanes::new(&key);
         }
     }
 
     #[inline(always)]
     fn wide(&self) -> &TriangleLanes<LANES> {
         self.wide
-            .get_or_init(|| Box::new(TriangleLanes::new(&self.st)))
+            .get_or_init(|| Box::new(TriangleLanes::new(&self.key)))
     }
 }
 

@@ -580,6 +580,30 @@ impl Tmu {
     /// The float aliases (`fstartS` 0x0b4 .. `fdWdY` 0x0fc) are accepted too, raw IEEE
     /// singles, and converted with the 32 fraction bits the references keep. Offsets that
     /// are not TMU registers are ignored.
+    /// Whether [`Tmu::write_reg`] stores anything of a write to register `offset`: the
+    /// S, T and W iterators, the texture registers and the NCC tables. The TMU keeps
+    /// nothing of the other registers the spec sends it (the vertices and the triangle
+    /// commands: its iterators count from the FBI's pixel offsets), so the board need not
+    /// send it those.
+    pub const fn stores(offset: u32) -> bool {
+        matches!(
+            offset & 0x3fc,
+            addr::START_S
+                | addr::START_T
+                | addr::START_W
+                | addr::D_S_DX
+                | addr::D_T_DX
+                | addr::D_W_DX
+                | addr::D_S_DY
+                | addr::D_T_DY
+                | addr::D_W_DY
+                | addr::F_START_S..=addr::F_START_W
+                | addr::F_D_S_DX..=addr::F_D_W_DX
+                | addr::F_D_S_DY..=addr::F_D_W_DY
+                | addr::TEXTURE_MODE..=addr::TREX_INIT1
+        ) || (offset & 0x3fc >= addr::NCC_TABLE0 && offset & 0x3fc < addr::NCC_TABLE1 + 48)
+    }
+
     pub fn write_reg(&mut self, offset: u32, value: u32) {
         self.box86_return();
         let offset = offset & 0x3fc;

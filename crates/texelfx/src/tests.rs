@@ -1019,3 +1019,20 @@ fn span_lanes_match_per_pixel_texels() {
         }
     }
 }
+
+#[test]
+fn a_write_changes_the_tmu_exactly_where_it_stores_the_register() {
+    // The board sends a TMU only the registers `Tmu::stores` names: every other write
+    // must leave the whole state (as a save state holds it) as it was, and every named
+    // one must change it. (Each value is also a float of moderate size, for the float
+    // iterators: 3.14159 and -123.456.)
+    for offset in (0..0x400u32).step_by(4) {
+        for value in [0x4049_0fdbu32, 0xc2f6_e979] {
+            let mut tmu = Tmu::new(0, 2 << 20);
+            let before = tmu.save_state();
+            tmu.write_reg(offset, value);
+            let changed = tmu.save_state() != before;
+            assert_eq!(changed, Tmu::stores(offset), "{offset:#x} = {value:#x}");
+        }
+    }
+}
