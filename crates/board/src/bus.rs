@@ -282,6 +282,19 @@ impl Board {
     }
 }
 
+impl Board {
+    /// The bus writes `writes` (address, value), in order: as many
+    /// [`RegisterBus::write32`] calls, with the model chosen once for them all (what a
+    /// replay of a run of writes saves per write).
+    pub fn write32_all(&mut self, writes: &[(u32, u32)]) {
+        with_model!(self.kind, M => {
+            for &(bus_addr, value) in writes {
+                self.write32_as::<M>(bus_addr, value);
+            }
+        })
+    }
+}
+
 impl RegisterBus for Board {
     fn write32(&mut self, bus_addr: u32, value: u32) {
         // The one run-time choice of model: every stage below is compiled for it.

@@ -128,7 +128,7 @@ enum Walk<F, X> {
 impl<F: Iterator<Item = Span>, X: Iterator<Item = Span>> Iterator for Walk<F, X> {
     type Item = Span;
 
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<Span> {
         match self {
             Walk::Float(f) => f.next(),
@@ -138,7 +138,7 @@ impl<F: Iterator<Item = Span>, X: Iterator<Item = Span>> Iterator for Walk<F, X>
 }
 
 /// The MAME / DOSBox Staging walk in single-precision floating point.
-fn spans_float(p: &TriangleParams, rounding: EdgeRounding) -> impl Iterator<Item = Span> {
+fn spans_float(p: &TriangleParams, rounding: EdgeRounding) -> FloatSpans {
     let mut v = [
         (p.ax as f32 * (1.0 / 16.0), p.ay as f32 * (1.0 / 16.0)),
         (p.bx as f32 * (1.0 / 16.0), p.by as f32 * (1.0 / 16.0)),
@@ -159,18 +159,49 @@ fn spans_float(p: &TriangleParams, rounding: EdgeRounding) -> impl Iterator<Item
     let bottom = rounding.round(y3);
     let slope =
         |xa: f32, ya: f32, xb: f32, yb: f32| if yb == ya { 0.0 } else { (xb - xa) / (yb - ya) };
-    let d13 = slope(x1, y1, x3, y3);
-    let d12 = slope(x1, y1, x2, y2);
-    let d23 = slope(x2, y2, x3, y3);
-    (top..bottom.max(top)).filter_map(move |y| {
+    FloatSpans {
+        edges: FloatEdges {
+            x1,
+            y1,
+            x2,
+            y2,
+            d13: slope(x1, y1, x3, y3),
+            d12: slope(x1, y1, x2, y2),
+            d23: slope(x2, y2, x3, y3),
+            rounding,
+        },
+        y: top,
+        bottom: bottom.max(top),
+    }
+}
+
+/// A triangle's edges as the float walk samples them: vertices sorted by Y and the
+/// slopes of the long edge (1 to 3) and of the two short ones.
+#[derive(Clone, Copy)]
+struct FloatEdges {
+    x1: f32,
+    y1: f32,
+    x2: f32,
+    y2: f32,
+    d13: f32,
+    d12: f32,
+    d23: f32,
+    rounding: EdgeRounding,
+}
+
+impl FloatEdges {
+    /// Row `y`'s span: where the long edge and the short edge it meets cross the row's
+    /// centre, rounded to pixel boundaries; `None` where both round to the same one.
+    #[inline(always)]
+    fn span(&self, y: i32) -> Option<Span> {
         let fy = y as f32 + 0.5;
-        let a = x1 + (fy - y1) * d13;
-        let b = if fy < y2 {
-            x1 + (fy - y1) * d12
+        let a = self.x1 + (fy - self.y1) * self.d13;
+        let b = if fy < self.y2 {
+            self.x1 + (fy - self.y1) * self.d12
         } else {
-            x2 + (fy - y2) * d23
+            self.x2 + (fy - self.y2) * self.d23
         };
-        let (mut start, mut stop) = (rounding.round(a), rounding.round(b));
+        let (mut start, mut stop) = (self.rounding.round(a), self.rounding.round(b));
         if start == stop {
             return None;
         }
@@ -178,7 +209,32 @@ fn spans_float(p: &TriangleParams, rounding: EdgeRounding) -> impl Iterator<Item
             std::mem::swap(&mut start, &mut stop);
         }
         Some(Span { y, start, stop })
-    })
+    }
+}
+
+/// The spans of the float walk, top to bottom (a struct rather than a closure over the
+/// rows, so that the walk's loop inlines a row's work).
+pub struct FloatSpans {
+    edges: FloatEdges,
+    /// The next row, and the row after the last.
+    y: i32,
+    bottom: i32,
+}
+
+impl Iterator for FloatSpans {
+    type Item = Span;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Span> {
+        while self.y < self.bottom {
+            let y = self.y;
+            self.y += 1;
+            if let Some(span) = self.edges.span(y) {
+                return Some(span);
+            }
+        }
+        None
+    }
 }
 
 #[cfg(test)]

@@ -549,6 +549,21 @@ impl<R: std::io::Read> BinaryReader<R> {
         Some((addr, value))
     }
 
+    /// [`BinaryReader::next_write`] into `out` until it is full or the next op is not
+    /// such a write: how many were taken, consumed as that many `next_write` calls.
+    #[inline(always)]
+    pub fn next_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
+        let mut n = 0;
+        while n < out.len() {
+            let Some(write) = self.next_write() else {
+                break;
+            };
+            out[n] = write;
+            n += 1;
+        }
+        n
+    }
+
     /// [`Iterator::next`] through [`BinaryReader::record`].
     #[inline(never)]
     fn next_record(&mut self) -> Option<Result<TraceOp, BinaryError>> {

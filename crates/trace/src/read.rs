@@ -131,6 +131,16 @@ impl<'a> TraceReader<'a> {
             _ => None,
         }
     }
+
+    /// [`TraceReader::next_write`] into `out` until it is full or the next op is not
+    /// such a write ([`BinaryReader::next_writes`]): how many were taken.
+    #[inline(always)]
+    pub fn next_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
+        match &mut self.form {
+            Form::Binary(reader) if !self.done => reader.next_writes(out),
+            _ => 0,
+        }
+    }
 }
 
 /// A binary-form error as a [`LoadError`]: a read error inside a gzip stream is a
@@ -206,6 +216,17 @@ impl TraceStream<'_> {
             self.rest.next_write()
         } else {
             None
+        }
+    }
+
+    /// [`TraceStream::next_write`] into `out` until it is full or the next op is not
+    /// such a write: how many were taken, consumed as that many `next_write` calls.
+    #[inline(always)]
+    pub fn next_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
+        if self.ahead.is_empty() && self.error.is_none() {
+            self.rest.next_writes(out)
+        } else {
+            0
         }
     }
 }

@@ -258,6 +258,10 @@ pub fn execute_stream(
     Ok(done)
 }
 
+/// Plain writes [`execute_trace_stream`] takes from the reader at a time and hands the
+/// board together ([`Board::write32_all`]).
+const WRITE_RUN: usize = 64;
+
 /// [`execute_stream`] for a trace file's stream: runs at most `limit` ops of `stream`
 /// (all with `None`) on `board`, handing each dump to `sink`, and returns how many ran.
 /// The same ops in the same order as `execute_stream(stream.by_ref().take(limit), ..)`,
@@ -274,14 +278,17 @@ pub fn execute_trace_stream(
     let limit = limit.unwrap_or(usize::MAX);
     let mut done = 0;
     let mut next_progress = PROGRESS_STEP;
+    let mut writes = [(0u32, 0u32); WRITE_RUN];
     while done < limit {
         let writes_end = limit.min(next_progress);
         while done < writes_end {
-            let Some((addr, value)) = stream.next_write() else {
+            let room = (writes_end - done).min(WRITE_RUN);
+            let n = stream.next_writes(&mut writes[..room]);
+            if n == 0 {
                 break;
-            };
-            board.write32(addr, value);
-            done += 1;
+            }
+            board.write32_all(&writes[..n]);
+            done += n;
         }
         if done < writes_end {
             let Some(op) = stream.next() else {
