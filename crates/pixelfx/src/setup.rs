@@ -44,11 +44,11 @@ impl EdgeRounding {
     /// Round one coordinate ([`EdgeRounding::Box86Fixed`] rounds as `FloorHalfDown`
     /// here; its spans come from [`spans`] without floating point).
     ///
-    /// Written without branches or saturating conversions, so that a loop of it
-    /// vectorises on the baseline target (the float walk rounds a batch of rows at
-    /// once); equal to `base as i32 + i32::from(v - base > 0.5)` with `base` the floor or
-    /// the truncation of `v` from libm (tested on every 12.4 coordinate and bit patterns
-    /// of every exponent).
+    /// Written with selects and no saturating conversion where a value may have a
+    /// fraction (on the baseline target `as i32` is a dozen instructions, and it keeps a
+    /// loop of roundings from vectorising); equal to `base as i32 + i32::from(v - base >
+    /// 0.5)` with `base` the floor or the truncation of `v` from libm (tested on every
+    /// 12.4 coordinate and on bit patterns of every exponent).
     #[inline(always)]
     pub fn round(self, v: f32) -> i32 {
         // Below 2^23 a value may have a fraction, and its integer part fits in i32; at
