@@ -550,16 +550,21 @@ impl<R: std::io::Read> BinaryReader<R> {
     }
 
     /// [`BinaryReader::next_write`] into `out` until it is full or the next op is not
-    /// such a write: how many were taken, consumed as that many `next_write` calls.
+    /// such a write: how many were taken, consumed as that many `next_write` calls
+    /// would consume them.
     #[inline(always)]
     pub fn next_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
-        let mut n = 0;
-        while n < out.len() {
-            let Some(write) = self.next_write() else {
-                break;
-            };
-            out[n] = write;
-            n += 1;
+        if self.done || self.frame_due {
+            return 0;
+        }
+        // The whole write records in the buffer, decoded in one loop; the reader's
+        // position and counts move once for them all.
+        let n = self.input.take_writes(out);
+        if n > 0 {
+            self.pos += (n * WRITE_RECORD_LEN) as u64;
+            self.ops += n as u64;
+            self.accessed = true;
+            self.frame_due = crate::replay::is_swap(out[n - 1].0);
         }
         n
     }
@@ -624,6 +629,37 @@ impl<R: std::io::Read> Buffered<R> {
                 u32::from_le_bytes([v0, v1, v2, v3]),
             )
         })
+    }
+
+    /// Consumes the write records at the front of the buffer into `out`, as many as are
+    /// whole in it and fit: up to the first record that is not a write, has an invalid
+    /// address or crosses the buffer's end, and up to and including a swap (the frame it
+    /// ends is the reader's to count). Returns how many.
+    #[inline(always)]
+    fn take_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
+        let whole = (self.len - self.at) / WRITE_RECORD_LEN;
+        let records = self.buf[self.at..self.at + whole * WRITE_RECORD_LEN]
+            .chunks_exact(WRITE_RECORD_LEN)
+            .take(out.len());
+        let mut n = 0;
+        for (record, slot) in records.zip(out.iter_mut()) {
+            let Ok(&[tag, a0, a1, a2, a3, v0, v1, v2, v3]) =
+                <&[u8; WRITE_RECORD_LEN]>::try_from(record)
+            else {
+                break;
+            };
+            let addr = u32::from_le_bytes([a0, a1, a2, a3]);
+            if tag != TAG_WRITE || check_addr(addr).is_err() {
+                break;
+            }
+            *slot = (addr, u32::from_le_bytes([v0, v1, v2, v3]));
+            n += 1;
+            if crate::replay::is_swap(addr) {
+                break;
+            }
+        }
+        self.at += n * WRITE_RECORD_LEN;
+        n
     }
 
     fn new(input: R) -> Self {

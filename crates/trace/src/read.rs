@@ -121,19 +121,10 @@ impl<'a> TraceReader<'a> {
         matches!(self.form, Form::Binary(_))
     }
 
-    /// The next op if it is a write that the binary form can hand out at once, as
-    /// [`BinaryReader::next_write`]; `None`, with nothing consumed, otherwise (and always
-    /// for the text form).
-    #[inline(always)]
-    pub fn next_write(&mut self) -> Option<(u32, u32)> {
-        match &mut self.form {
-            Form::Binary(reader) if !self.done => reader.next_write(),
-            _ => None,
-        }
-    }
-
-    /// [`TraceReader::next_write`] into `out` until it is full or the next op is not
-    /// such a write ([`BinaryReader::next_writes`]): how many were taken.
+    /// The next ops while they are writes that the binary form can hand out at once
+    /// ([`BinaryReader::next_writes`]), into `out` until it is full: how many were
+    /// taken, consumed as `next` would yield them. 0, with nothing consumed, otherwise
+    /// (and always for the text form).
     #[inline(always)]
     pub fn next_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
         match &mut self.form {
@@ -206,21 +197,10 @@ impl TraceStream<'_> {
         self.rest.file()
     }
 
-    /// The next op if it is a write that can be handed out without building a
-    /// [`TraceOp`] ([`TraceReader::next_write`]): its address and value, consumed, as
-    /// [`Iterator::next`] would yield it. `None`, with nothing consumed, otherwise:
-    /// `next` gives the next op.
-    #[inline(always)]
-    pub fn next_write(&mut self) -> Option<(u32, u32)> {
-        if self.ahead.is_empty() && self.error.is_none() {
-            self.rest.next_write()
-        } else {
-            None
-        }
-    }
-
-    /// [`TraceStream::next_write`] into `out` until it is full or the next op is not
-    /// such a write: how many were taken, consumed as that many `next_write` calls.
+    /// The next ops while they are writes that can be handed out without building a
+    /// [`TraceOp`] ([`TraceReader::next_writes`]), into `out` until it is full: how many
+    /// were taken, consumed as [`Iterator::next`] would yield them. 0, with nothing
+    /// consumed, otherwise: `next` gives the next op.
     #[inline(always)]
     pub fn next_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
         if self.ahead.is_empty() && self.error.is_none() {

@@ -265,9 +265,9 @@ const WRITE_RUN: usize = 64;
 /// [`execute_stream`] for a trace file's stream: runs at most `limit` ops of `stream`
 /// (all with `None`) on `board`, handing each dump to `sink`, and returns how many ran.
 /// The same ops in the same order as `execute_stream(stream.by_ref().take(limit), ..)`,
-/// with the same progress calls; plain writes go from the reader's buffer to the board
-/// without an op built for each ([`TraceStream::next_write`]), the replay's most common
-/// step.
+/// with the same progress calls; plain writes, the replay's most common step, go from
+/// the reader's buffer to the board without an op built for each, a run at a time
+/// ([`crate::TraceStream::next_writes`], [`Board::write32_all`]).
 pub fn execute_trace_stream(
     stream: &mut crate::TraceStream<'_>,
     limit: Option<usize>,

@@ -103,3 +103,68 @@ fn a_trace_stream_stops_at_the_same_bad_record() {
         assert!(fast == reference);
     }
 }
+
+#[test]
+fn a_run_of_writes_stops_at_a_bad_address_and_after_a_swap() {
+    // A write of a misaligned address in the middle of a run of writes (the replay
+    // takes runs of whole write records from the buffer at once), and swaps inside runs
+    // (each ends a frame): the same ops, dumps and error as op by op.
+    use sst1_trace::TraceOp;
+    let text = small_triangles(3, 3000, true);
+    let mut trace = parse_text("t", text.as_bytes()).unwrap();
+    let writes: Vec<usize> = (0..trace.ops.len())
+        .filter(|&i| matches!(trace.ops[i], TraceOp::Write { .. }))
+        .collect();
+    // Swaps among plain writes, away from any other op.
+    for k in [writes.len() / 5, writes.len() / 3] {
+        trace.ops[writes[k]] = TraceOp::Write {
+            addr: 0x128,
+            value: 0,
+        };
+    }
+    let swapped = encode_binary(&trace);
+    let fast = replay(&swapped, &[], true);
+    assert!(fast.4.is_none(), "{:?}", fast.4);
+    assert!(fast == replay(&swapped, &[], false));
+    trace.ops[writes[writes.len() / 2]] = TraceOp::Write {
+        addr: 0x102,
+        value: 7,
+    };
+    let bad = encode_binary(&trace);
+    let fast = replay(&bad, &[], true);
+    assert!(fast.4.is_some(), "the address is refused");
+    assert!(fast == replay(&bad, &[], false));
+}
+
+#[test]
+fn a_swap_without_its_frame_record_stops_a_run_of_writes() {
+    // A hostile binary trace: the frame record after a swap taken out, so that the swap
+    // is followed by more writes. A run of writes taken from the buffer must end at the
+    // swap, as op by op, and both refuse the write after it. (Record layout: the
+    // `binary` module's docs: a write is 0x03, addr u32, value u32; a frame is 0x07,
+    // number u32.)
+    let text = small_triangles(4, 2000, true);
+    let mut trace = parse_text("t", text.as_bytes()).unwrap();
+    let middle = trace.ops.len() / 2;
+    trace.ops.insert(
+        middle,
+        sst1_trace::TraceOp::Write {
+            addr: 0x128,
+            value: 0,
+        },
+    );
+    let bytes = encode_binary(&trace);
+    // The swap, its frame record, and a write after it.
+    let swap = [0x03, 0x28, 0x01, 0, 0, 0, 0, 0, 0, 0x07];
+    let at = bytes
+        .windows(swap.len())
+        .position(|w| w == swap)
+        .expect("the swap and its frame record");
+    let frame = at + 9;
+    assert_eq!(bytes[frame + 5], 0x03, "a write follows the frame record");
+    let mut hostile = bytes[..frame].to_vec();
+    hostile.extend_from_slice(&bytes[frame + 5..]);
+    let fast = replay(&hostile, &[], true);
+    assert!(fast.4.is_some(), "the write after the swap is refused");
+    assert!(fast == replay(&hostile, &[], false));
+}
