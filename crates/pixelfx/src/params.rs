@@ -122,7 +122,7 @@ impl TriangleParams {
     /// Apply a write to one of the parameter registers (normal-map byte `offset`,
     /// 0x008..=0x0fc). `value` is the raw bus word; float registers are converted.
     /// Returns `false` if `offset` is not an FBI parameter register.
-    #[inline]
+    #[inline(always)]
     pub fn write(&mut self, offset: u32, value: u32, overflow: FloatOverflow) -> bool {
         // Float registers mirror the fixed ones 0x80 bytes higher (spec 5, register table).
         let (reg, float) = if (addr::F_VERTEX_AX..=addr::F_D_W_DY).contains(&offset) {
