@@ -378,6 +378,46 @@ mod tests {
     }
 
     #[test]
+    fn a_run_of_writes_is_the_writes_one_by_one() {
+        // Pseudo-random writes over the whole aperture (registers of every chip field,
+        // LFB, texture memory; commands that draw replaced by NOPs, so that no random
+        // triangle or fill runs) given to one board in runs and to another one at a time:
+        // the same state, timing model included.
+        let mut runs = Board::new(BoardConfig::default());
+        let mut single = Board::new(BoardConfig::default());
+        for b in [&mut runs, &mut single] {
+            b.pci_write(PCI_INIT_ENABLE, 1);
+        }
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut writes = Vec::new();
+        for _ in 0..20_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let addr = match seed % 10 {
+                0 => LFB_BASE + (seed >> 8) as u32 % 0x40_0000,
+                1 => TEX_BASE + (seed >> 8) as u32 % 0x80_0000,
+                _ => (seed >> 8) as u32 & 0x3f_fffc,
+            };
+            let draws = matches!(
+                addr & 0x3fc,
+                addr::TRIANGLE_CMD | addr::F_TRIANGLE_CMD | addr::FASTFILL_CMD
+            );
+            let addr = if draws { addr::NOP_CMD } else { addr };
+            writes.push((addr, (seed >> 32) as u32));
+        }
+        for run in writes.chunks(37) {
+            runs.write32_all(run);
+        }
+        for &(addr, value) in &writes {
+            single.write32(addr, value);
+        }
+        assert_eq!(runs.save_state(), single.save_state());
+        assert!(runs.diagnostics().iter().eq(single.diagnostics().iter()));
+        assert!(single.fbi.stats.triangles == 0 && !single.diagnostics().is_empty());
+    }
+
+    #[test]
     fn refused_writes_are_counted_and_change_nothing() {
         let mut board = Board::new(BoardConfig::default());
         let fbz_mode = addr::FBZ_MODE;
