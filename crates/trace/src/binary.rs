@@ -536,22 +536,14 @@ impl<R: std::io::Read> BinaryReader<R> {
     /// crosses the buffer's end, an error, the end, a frame record due): `next` reads it.
     #[inline(always)]
     pub fn next_write(&mut self) -> Option<(u32, u32)> {
-        if self.done || self.frame_due {
-            return None;
-        }
-        let (addr, value) = self.input.peek_write()?;
-        check_addr(addr).ok()?;
-        self.input.at += WRITE_RECORD_LEN;
-        self.pos += WRITE_RECORD_LEN as u64;
-        self.accessed = true;
-        self.frame_due = crate::replay::is_swap(addr);
-        self.ops += 1;
-        Some((addr, value))
+        let mut one = [(0, 0)];
+        (self.next_writes(&mut one) == 1).then_some(one[0])
     }
 
-    /// [`BinaryReader::next_write`] into `out` until it is full or the next op is not
-    /// such a write: how many were taken, consumed as that many `next_write` calls
-    /// would consume them.
+    /// The next ops while they are writes as [`BinaryReader::next_write`] takes them,
+    /// into `out` until it is full: how many were taken, consumed as that many
+    /// `next_write` calls would consume them (a run ends after a swap: its frame record
+    /// comes next).
     #[inline(always)]
     pub fn next_writes(&mut self, out: &mut [(u32, u32)]) -> usize {
         if self.done || self.frame_due {
@@ -612,24 +604,6 @@ const WRITE_RECORD_LEN: usize = 9;
 impl<R: std::io::Read> Buffered<R> {
     /// The buffer's size.
     const SIZE: usize = 64 << 10;
-
-    /// The address and value of the write record at the front of the buffer, if that
-    /// is where the next record is and all its bytes are buffered (nothing is consumed).
-    #[inline(always)]
-    fn peek_write(&self) -> Option<(u32, u32)> {
-        let end = self.at + WRITE_RECORD_LEN;
-        if end > self.len {
-            return None;
-        }
-        let b = self.buf.get(self.at..end)?;
-        let [tag, a0, a1, a2, a3, v0, v1, v2, v3] = *<&[u8; WRITE_RECORD_LEN]>::try_from(b).ok()?;
-        (tag == TAG_WRITE).then(|| {
-            (
-                u32::from_le_bytes([a0, a1, a2, a3]),
-                u32::from_le_bytes([v0, v1, v2, v3]),
-            )
-        })
-    }
 
     /// Consumes the write records at the front of the buffer into `out`, as many as are
     /// whole in it and fit: up to the first record that is not a write, has an invalid
