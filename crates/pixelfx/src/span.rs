@@ -29,7 +29,7 @@ use sst1_fog::FogTable;
 
 use crate::fbi::{Fbi, PathCounts};
 use crate::isa::VectorIsa;
-use crate::iter::{wfloat, Iterated};
+use crate::iter::{wfloat, Iterated, IteratorClamp};
 use crate::model::PixelModel;
 use crate::params::TriangleParams;
 use crate::pipeline::{DrawState, Source};
@@ -591,6 +591,16 @@ impl TriangleConsts {
     }
 }
 
+/// One channel's iterated colour, clamped to 8 bits, in every lane.
+#[inline(always)]
+fn clamp_colour_lanes<const L: usize>(raw: [i32; L], clamp: IteratorClamp) -> [i32; L] {
+    let mut out = [0; L];
+    for (v, r) in out.iter_mut().zip(raw) {
+        *v = clamp.colour(r) as i32;
+    }
+    out
+}
+
 /// The pixels of the next chunk of a span with `left` pixels left.
 #[inline(always)]
 pub(crate) fn chunk_len(left: usize) -> usize {
@@ -1006,13 +1016,16 @@ impl Shader<'_> {
         };
         // Plain loops, not nested closures: a closure the compiler leaves as a call is
         // compiled for the baseline target, outside the vector kernel.
-        let mut iterated = ColourLanes::<L>::ZERO;
-        for (c, lanes) in iterated.c.iter_mut().enumerate() {
-            let raw = place.colour(c);
-            for (v, r) in lanes.iter_mut().zip(raw) {
-                *v = clamp.colour(r) as i32;
-            }
-        }
+        // A channel at a time, written out: a loop over the four channels, its lanes
+        // unrolled, was vectorised across the channels, with a scatter per lane.
+        let iterated = ColourLanes::<L> {
+            c: [
+                clamp_colour_lanes(place.colour(0), clamp),
+                clamp_colour_lanes(place.colour(1), clamp),
+                clamp_colour_lanes(place.colour(2), clamp),
+                clamp_colour_lanes(place.colour(3), clamp),
+            ],
+        };
         let (color0, color1) = (&consts.color0, &consts.color1);
         let other_rgb: [&[i32; L]; 3] = match cp.cc_rgbselect() {
             RgbSelect::IteratedRgb => [&iterated.c[0], &iterated.c[1], &iterated.c[2]],
