@@ -944,8 +944,9 @@ impl Shader<'_> {
         let am = st.alpha_mode;
         let fog_mode = st.fog_mode;
         let zero = &consts.zero;
-        let mut alive = [false; L];
-        alive[..n].fill(true);
+        // A compare of every lane (a fill of the first `n` was a call to memset, whose
+        // bytes the vector loads of `alive` then waited for).
+        let mut alive: [bool; L] = lanes(|i| i < n);
 
         // --- stipple ---
         if mode.enable_stipple() {
