@@ -571,11 +571,18 @@ impl TriangleConsts {
 
     /// The constants of a triangle drawn with `st`: rebuilt where its constant colours
     /// differ from the last triangle's.
+    #[inline(always)]
     pub(crate) fn update(&mut self, st: &DrawState) {
         let key = LaneKey::of(st);
-        if key == self.key {
-            return;
+        if key != self.key {
+            self.rebuild(key);
         }
+    }
+
+    /// [`TriangleConsts::update`]'s rebuild, out of line: the compare above stays a few
+    /// instructions in the walk.
+    #[inline(never)]
+    fn rebuild(&mut self, key: LaneKey) {
         self.key = key;
         self.narrow = TriangleLanes::new(&key);
         self.packed = TriangleLanes::new(&key);
