@@ -50,6 +50,7 @@ fn scene(seed: u64, tmus: u32) -> Trace {
         dump_every: 50,
         // A random frame-buffer layout in every third scene.
         layout: seed.is_multiple_of(3),
+        large: false,
     });
     read_trace(&format!("random_states seed {seed}"), text.as_bytes())
         .unwrap_or_else(|e| panic!("{e}"))
@@ -649,6 +650,53 @@ fn random_states_soak() {
         "{} difference(s):\n{}",
         problems.len(),
         problems.join("\n")
+    );
+}
+
+/// Large triangles in random states (`scenes::heavy_states`, 4 states of 96 triangles):
+/// the wide chunks and the render threads' bands in states no trace uses. The fast path
+/// with every copy of the kernels on 1, 2 and 4 render threads gives the reference
+/// path's buffers and counters, and some of the triangles ran on the threads.
+#[test]
+fn heavy_states_identical_on_every_thread_count() {
+    let text = sst1_trace::scenes::heavy_states(3, 4);
+    let trace = read_trace("heavy states", text.as_bytes()).unwrap_or_else(|e| panic!("{e}"));
+    let profile = AccuracyProfile::default();
+    let reference = replay(&trace, profile, Draw::Reference, None);
+    let mut problems = Vec::new();
+    let mut threaded = 0;
+    for isa in VectorIsa::available() {
+        for threads in [1, 2, 4] {
+            let mut board = board(&trace, profile, Draw::Fast(isa));
+            board.set_threads(threads);
+            let mut buffers: Vec<(String, Vec<u16>)> = execute(&trace.ops, &mut board, |_| {})
+                .into_iter()
+                .map(|d| (d.file, d.data))
+                .collect();
+            final_buffers(&board, &mut buffers);
+            let fast = Outcome {
+                buffers,
+                stats: board.stats(),
+            };
+            if threads > 1 {
+                threaded += board.path_counts().in_bands;
+            }
+            if let Some(d) = difference(
+                &format!("{threads} threads"),
+                &trace,
+                profile,
+                isa,
+                &fast,
+                &reference,
+            ) {
+                problems.push(d);
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    assert!(
+        threaded > 100_000,
+        "{threaded} pixels shaded on the render threads"
     );
 }
 

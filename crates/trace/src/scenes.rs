@@ -466,6 +466,10 @@ pub struct RandomStates {
     /// (the row pitch) and `fbiInit2` buffer offset at random, so that buffers may
     /// overlap (one buffer's colour word another's aux word) and rows wrap.
     pub layout: bool,
+    /// Large triangles only (10,000 to 60,000 pixels of area, before clipping), so that
+    /// the scene's time goes to the pixels of its states rather than to their set-up and
+    /// texture downloads (`voodoo gen heavy-states`).
+    pub large: bool,
 }
 
 impl Default for RandomStates {
@@ -477,8 +481,31 @@ impl Default for RandomStates {
             triangles_per_state: 2,
             dump_every: 50,
             layout: false,
+            large: false,
         }
     }
+}
+
+impl RandomStates {
+    /// A heavy-states scene: `states` random drawing states on 2 TMUs, each drawing 96
+    /// large triangles, one dump at the end: kernel-bound work in states that no trace
+    /// in the repository uses (`voodoo bench`'s `heavy_states`).
+    pub fn heavy(seed: u64, states: u32) -> Self {
+        Self {
+            seed,
+            tmus: 2,
+            states,
+            triangles_per_state: 96,
+            dump_every: 0,
+            layout: false,
+            large: true,
+        }
+    }
+}
+
+/// [`random_states`] of [`RandomStates::heavy`].
+pub fn heavy_states(seed: u64, states: u32) -> String {
+    random_states(RandomStates::heavy(seed, states))
 }
 
 /// The register bits the FBI stores for a mode register: a random value within them.
@@ -529,7 +556,7 @@ pub fn random_states(p: RandomStates) -> String {
         }
         fbi_state(&mut scene, &mut rng, &tmu_modes[..tmus as usize]);
         for _ in 0..p.triangles_per_state.max(1) {
-            let v = random_triangle(&mut rng);
+            let v = random_triangle(&mut rng, p.large);
             let sends = Sends {
                 za: true,
                 w: true,
@@ -800,8 +827,9 @@ fn fbi_state(scene: &mut Scene, rng: &mut Rng, _tmus: &[(u32, u32)]) {
 /// in 0-255 and sometimes beyond (the iterators clamp), Z over the 16-bit range and
 /// sometimes beyond, 1/W between 0.02 and 1.99, S/W and T/W per TMU over a few texture
 /// widths.
-fn random_triangle(rng: &mut Rng) -> [Vertex; 3] {
-    let area = (rng.range(0.0, (120_000f64).ln())).exp() * 0.5;
+fn random_triangle(rng: &mut Rng, large: bool) -> [Vertex; 3] {
+    let smallest = if large { 20_000f64 } else { 1.0 };
+    let area = (rng.range(smallest.ln(), (120_000f64).ln())).exp() * 0.5;
     let cx = rng.range(-40.0, WIDTH + 40.0);
     let cy = rng.range(-40.0, HEIGHT + 40.0);
     let theta = rng.range(0.0, std::f64::consts::TAU);

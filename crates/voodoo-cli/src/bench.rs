@@ -25,6 +25,9 @@ use sst1_trace::{
 /// The recorded traces `voodoo bench` runs by default (in `traces/conformance/traces`).
 pub const PERF_TRACES: [&str; 2] = ["perf_gouraud_heavy", "perf_tex_heavy"];
 
+/// Drawing states of the default heavy-states scene ([`scenes::heavy_states`]).
+const HEAVY_STATES: u32 = 12;
+
 /// The repository's conformance traces, where this binary was built.
 fn default_trace_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../traces/conformance/traces")
@@ -309,7 +312,12 @@ fn default_scenes(o: &Options) -> Result<Vec<Scene>, String> {
                 triangles_per_state: 2,
                 dump_every: 0,
                 layout: false,
+                large: false,
             }),
+        ),
+        (
+            format!("heavy_states ({HEAVY_STATES} states, large triangles)"),
+            scenes::heavy_states(1, HEAVY_STATES),
         ),
     ];
     for (name, text) in generated {

@@ -175,13 +175,13 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Triangles (small-tris, small-tex-tris; default 20000) or drawing states
-        /// (random-states; default 200).
+        /// (random-states, default 200; heavy-states, default 12).
         #[arg(long)]
         count: Option<u32>,
-        /// TMUs on the board (random-states), 1 to 3.
+        /// TMUs on the board (random-states, heavy-states), 1 to 3.
         #[arg(long, default_value_t = 2)]
         tmus: u32,
-        /// A random frame-buffer layout (random-states): row pitch and buffer offset
+        /// A random frame-buffer layout (random-states, heavy-states): row pitch and buffer offset
         /// drawn at random, so buffers may overlap.
         #[arg(long)]
         layout: bool,
@@ -289,6 +289,9 @@ enum SceneKind {
     SmallTexTris,
     /// Triangles of random size in random drawing states.
     RandomStates,
+    /// Large triangles in random drawing states (`--count` states, default 12): the
+    /// pixels of states no trace in the repository uses, with little set-up between.
+    HeavyStates,
     /// A family of stability scenes (`--family`): one parameter swept towards where
     /// arithmetic breaks, one dump per step.
     Stability,
@@ -1238,6 +1241,16 @@ fn gen(
                 states: count.unwrap_or(200),
                 layout,
                 ..scenes::RandomStates::default()
+            })
+        }
+        SceneKind::HeavyStates => {
+            if !(1..=3).contains(&tmus) {
+                return Err(format!("--tmus {tmus}: a board has 1 to 3 TMUs"));
+            }
+            scenes::random_states(scenes::RandomStates {
+                tmus,
+                layout,
+                ..scenes::RandomStates::heavy(seed, count.unwrap_or(12))
             })
         }
     };
