@@ -600,12 +600,10 @@ impl TriangleConsts {
 
 /// One channel's iterated colour, clamped to 8 bits, in every lane.
 #[inline(always)]
-fn clamp_colour_lanes<const L: usize>(raw: [i32; L], clamp: IteratorClamp) -> [i32; L] {
-    let mut out = [0; L];
+fn clamp_colour_lanes<const L: usize>(out: &mut [i32; L], raw: [i32; L], clamp: IteratorClamp) {
     for (v, r) in out.iter_mut().zip(raw) {
         *v = clamp.colour(r) as i32;
     }
-    out
 }
 
 /// The pixels of the next chunk of a span with `left` pixels left.
@@ -951,9 +949,8 @@ impl Shader<'_> {
         let am = st.alpha_mode;
         let fog_mode = st.fog_mode;
         let zero = &consts.zero;
-        // A compare of every lane (a fill of the first `n` was a call to memset, whose
-        // bytes the vector loads of `alive` then waited for).
-        let mut alive: [bool; L] = lanes(|i| i < n);
+        let mut alive = [false; L];
+        alive[..n].fill(true);
 
         // --- stipple ---
         if mode.enable_stipple() {
@@ -1026,14 +1023,13 @@ impl Shader<'_> {
         // compiled for the baseline target, outside the vector kernel.
         // A channel at a time, written out: a loop over the four channels, its lanes
         // unrolled, was vectorised across the channels, with a scatter per lane.
-        let iterated = ColourLanes::<L> {
-            c: [
-                clamp_colour_lanes(place.colour(0), clamp),
-                clamp_colour_lanes(place.colour(1), clamp),
-                clamp_colour_lanes(place.colour(2), clamp),
-                clamp_colour_lanes(place.colour(3), clamp),
-            ],
-        };
+        // (Into the lanes in place: arrays returned by value were copied with memcpy.)
+        let mut iterated = ColourLanes::<L>::ZERO;
+        let [r, g, b, a] = &mut iterated.c;
+        clamp_colour_lanes(r, place.colour(0), clamp);
+        clamp_colour_lanes(g, place.colour(1), clamp);
+        clamp_colour_lanes(b, place.colour(2), clamp);
+        clamp_colour_lanes(a, place.colour(3), clamp);
         let (color0, color1) = (&consts.color0, &consts.color1);
         let other_rgb: [&[i32; L]; 3] = match cp.cc_rgbselect() {
             RgbSelect::IteratedRgb => [&iterated.c[0], &iterated.c[1], &iterated.c[2]],
