@@ -316,7 +316,7 @@ fn default_scenes(o: &Options) -> Result<Vec<Scene>, String> {
             }),
         ),
         (
-            format!("heavy_states ({HEAVY_STATES} states, large triangles)"),
+            format!("heavy_states ({HEAVY_STATES} states, 2 TMUs)"),
             scenes::heavy_states(1, HEAVY_STATES),
         ),
     ];

@@ -199,7 +199,8 @@ enum Command {
     /// excluded), Mtri/s, ns and cycles per pixel, and the fast path's speed-up; a
     /// `binary` row replays the fast path from the binary trace form, decoding included.
     /// Default scenes: perf_gouraud_heavy, perf_tex_heavy, 10-pixel Gouraud and textured
-    /// triangles, and a random-state scene.
+    /// triangles, a random-state scene and a heavy-states scene (large triangles in random
+    /// states).
     Bench {
         /// Trace files to measure instead of the default scenes.
         traces: Vec<PathBuf>,
