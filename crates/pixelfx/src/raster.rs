@@ -799,26 +799,7 @@ mod tests {
     /// random triangles from slivers to the whole 12.4 range.
     #[test]
     fn box_pixels_bound_every_walk() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = |range: i32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 33) as i32 % range - range / 2
-        };
-        for k in 0..3000 {
-            let range = [64, 1024, 65536][k % 3];
-            let v: [i16; 6] = core::array::from_fn(|_| next(range) as i16);
-            let p = TriangleParams {
-                ax: v[0],
-                ay: v[1],
-                bx: v[2],
-                by: v[3],
-                cx: v[4],
-                cy: v[5],
-                right_to_left: k % 2 == 0,
-                ..Default::default()
-            };
+        for p in setup::random_triangles(0x2545_f491_4f6c_dd1d, 3000, &[64, 1024, 65536]) {
             for rounding in [
                 EdgeRounding::FloorHalfDown,
                 EdgeRounding::TruncHalfDown,

@@ -294,6 +294,37 @@ impl Iterator for FloatSpans {
     }
 }
 
+/// `count` pseudo-random triangles from `seed` (xorshift), the `k`-th with vertex
+/// coordinates within `ranges[k % ranges.len()]` sixteenths of a pixel around 0 and
+/// every other one right to left: slivers to the whole 12.4 range, for the walks' tests.
+#[cfg(test)]
+pub(crate) fn random_triangles(
+    mut seed: u64,
+    count: usize,
+    ranges: &[i32],
+) -> impl Iterator<Item = TriangleParams> + '_ {
+    let mut next = move |range: i32| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 33) as i32 % range - range / 2
+    };
+    (0..count).map(move |k| {
+        let range = ranges[k % ranges.len()];
+        let v: [i16; 6] = core::array::from_fn(|_| next(range) as i16);
+        TriangleParams {
+            ax: v[0],
+            ay: v[1],
+            bx: v[2],
+            by: v[3],
+            cx: v[4],
+            cy: v[5],
+            right_to_left: k % 2 == 0,
+            ..Default::default()
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -302,26 +333,8 @@ mod tests {
     fn the_walk_in_blocks_of_rows_is_the_walk_row_by_row() {
         // Random triangles from slivers to the whole 12.4 range, both float roundings:
         // the spans handed out from blocks of rows are those of the rows one at a time.
-        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = |range: i32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 33) as i32 % range - range / 2
-        };
         let mut rows = 0;
-        for k in 0..20_000 {
-            let range = [16, 64, 300, 1024, 65536][k % 5];
-            let v: [i16; 6] = core::array::from_fn(|_| next(range) as i16);
-            let p = TriangleParams {
-                ax: v[0],
-                ay: v[1],
-                bx: v[2],
-                by: v[3],
-                cx: v[4],
-                cy: v[5],
-                ..Default::default()
-            };
+        for p in random_triangles(0x9e37_79b9_7f4a_7c15, 20_000, &[16, 64, 300, 1024, 65536]) {
             for rounding in [EdgeRounding::FloorHalfDown, EdgeRounding::TruncHalfDown] {
                 let walk = spans_float(&p, rounding);
                 let (edges, top, bottom) = (walk.edges, walk.y, walk.bottom);

@@ -1232,26 +1232,23 @@ fn gen(
         }
         SceneKind::SmallTris => scenes::small_triangles(seed, count.unwrap_or(20000), false),
         SceneKind::SmallTexTris => scenes::small_triangles(seed, count.unwrap_or(20000), true),
-        SceneKind::RandomStates => {
+        SceneKind::RandomStates | SceneKind::HeavyStates => {
             if !(1..=3).contains(&tmus) {
                 return Err(format!("--tmus {tmus}: a board has 1 to 3 TMUs"));
             }
-            scenes::random_states(scenes::RandomStates {
-                seed,
-                tmus,
-                states: count.unwrap_or(200),
-                layout,
-                ..scenes::RandomStates::default()
-            })
-        }
-        SceneKind::HeavyStates => {
-            if !(1..=3).contains(&tmus) {
-                return Err(format!("--tmus {tmus}: a board has 1 to 3 TMUs"));
-            }
+            let base = if scene == SceneKind::HeavyStates {
+                scenes::RandomStates::heavy(seed, count.unwrap_or(12))
+            } else {
+                scenes::RandomStates {
+                    seed,
+                    states: count.unwrap_or(200),
+                    ..scenes::RandomStates::default()
+                }
+            };
             scenes::random_states(scenes::RandomStates {
                 tmus,
                 layout,
-                ..scenes::RandomStates::heavy(seed, count.unwrap_or(12))
+                ..base
             })
         }
     };
