@@ -656,10 +656,11 @@ fn random_states_soak() {
 /// Large triangles in random states (`scenes::heavy_states`, 4 states of 96 triangles):
 /// the wide chunks and the render threads' bands in states no trace uses. The fast path
 /// with every copy of the kernels on 1, 2 and 4 render threads gives the reference
-/// path's buffers and counters, and some of the triangles ran on the threads.
+/// path's buffers and counters, and some of the triangles ran on the threads (in this
+/// scene, 269,000 of their pixels in rows that start left of column 0).
 #[test]
 fn heavy_states_identical_on_every_thread_count() {
-    let text = sst1_trace::scenes::heavy_states(3, 4);
+    let text = sst1_trace::scenes::heavy_states(5, 4);
     let trace = read_trace("heavy states", text.as_bytes()).unwrap_or_else(|e| panic!("{e}"));
     let profile = AccuracyProfile::default();
     let reference = replay(&trace, profile, Draw::Reference, None);

@@ -469,8 +469,8 @@ impl Fbi {
     /// `false`, having done nothing, where that could differ from shading the rows in
     /// order: a small triangle (not worth the threads), a texel source that cannot be
     /// shared, a row whose
-    /// lanes would reach beyond the frame-buffer row (the single walk lets them run on
-    /// into the next row), two rows on one frame-buffer row (the Y-origin flip wraps at
+    /// lanes would reach past the frame-buffer row's end (the single walk lets them run
+    /// on into the next row), two rows on one frame-buffer row (the Y-origin flip wraps at
     /// 1024), or colour and aux rows that share memory. Otherwise every row
     /// touches only its own words, so the bands give the pixels and counters of the
     /// single walk whatever the thread count.
@@ -487,10 +487,9 @@ impl Fbi {
         if self.threads < 2 || row_pixels == 0 || pixels < MIN_THREADED_PIXELS {
             return false;
         }
-        if rows
-            .iter()
-            .any(|r| r.start < 0 || r.stop as usize > row_pixels)
-        {
+        // Columns left of 0 have no words on either walk (`Words::from_start`), so a row
+        // may start there; columns at and past the row's end run on into the next row.
+        if rows.iter().any(|r| r.stop as usize > row_pixels) {
             return false;
         }
         // The Y-origin flip keeps 10 bits (`Fbi::screen_y`): rows 1024 apart share a
