@@ -487,8 +487,9 @@ impl Fbi {
         if self.threads < 2 || row_pixels == 0 || pixels < MIN_THREADED_PIXELS {
             return false;
         }
-        // Columns left of 0 have no words on either walk (`Words::from_start`), so a row
-        // may start there; columns at and past the row's end run on into the next row.
+        // Columns left of 0 have no words on either walk (`Words::from_start`,
+        // `FrameBuffer::index`), so a row may start there; columns at and past the row's
+        // end run on into the next row.
         if rows.iter().any(|r| r.stop as usize > row_pixels) {
             return false;
         }

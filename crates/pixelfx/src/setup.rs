@@ -173,7 +173,6 @@ fn spans_float(p: &TriangleParams, rounding: EdgeRounding) -> FloatSpans {
         y: top,
         bottom: bottom.max(top),
         block: [(0, 0); BLOCK_ROWS],
-        block_y: top,
         at: 0,
         len: 0,
     }
@@ -232,10 +231,9 @@ pub struct FloatSpans {
     /// The next row to compute, and the row after the last.
     y: i32,
     bottom: i32,
-    /// The computed rows' `(start, stop)` (equal where a row is empty), from row
-    /// `block_y`; `at..len` are still to be handed out.
+    /// The computed rows' `(start, stop)` (equal where a row is empty): rows
+    /// `y - len..y`, of which `at..len` are still to be handed out.
     block: [(i32, i32); BLOCK_ROWS],
-    block_y: i32,
     at: usize,
     len: usize,
 }
@@ -276,7 +274,7 @@ impl Iterator for FloatSpans {
                 let (start, stop) = self.block[i];
                 if start != stop {
                     return Some(Span {
-                        y: self.block_y + i as i32,
+                        y: self.y - (self.len - i) as i32,
                         start,
                         stop,
                     });
@@ -286,7 +284,6 @@ impl Iterator for FloatSpans {
                 return None;
             }
             self.block = self.edges.block(self.y);
-            self.block_y = self.y;
             self.at = 0;
             self.len = (self.bottom - self.y).min(BLOCK_ROWS as i32) as usize;
             self.y += self.len as i32;

@@ -1019,11 +1019,11 @@ impl Shader<'_> {
         } else {
             &consts.zero_colour
         };
-        // Plain loops, not nested closures: a closure the compiler leaves as a call is
-        // compiled for the baseline target, outside the vector kernel.
-        // A channel at a time, written out: a loop over the four channels, its lanes
-        // unrolled, was vectorised across the channels, with a scatter per lane.
-        // (Into the lanes in place: arrays returned by value were copied with memcpy.)
+        // A channel at a time, written out and into the lanes in place: a loop over the
+        // four channels, its lanes unrolled, was vectorised across the channels with a
+        // scatter per lane, and arrays returned by value were copied with memcpy. (A
+        // function, not a closure: a closure the compiler leaves as a call is compiled
+        // for the baseline target, outside the vector kernel.)
         let mut iterated = ColourLanes::<L>::ZERO;
         let [r, g, b, a] = &mut iterated.c;
         clamp_colour_lanes(r, place.colour(0), clamp);
