@@ -55,6 +55,9 @@ pub struct Fbi {
     pub path_counts: PathCounts,
     /// Render threads for large triangles ([`Fbi::set_threads`]).
     pub(crate) threads: usize,
+    /// The render threads other than the calling one (`threads - 1` of them; `None`
+    /// with one render thread).
+    pub(crate) helpers: Option<std::sync::Arc<rayon::ThreadPool>>,
     /// The copy of the span kernels that runs ([`Fbi::set_vector_isa`]).
     pub(crate) isa: crate::VectorIsa,
     /// The pixel whose history is recorded ([`Fbi::set_watch`]), if any.
@@ -117,6 +120,7 @@ impl Fbi {
             generic_path: false,
             path_counts: PathCounts::default(),
             threads: 1,
+            helpers: None,
             isa: crate::VectorIsa::best(),
             watch: None,
             pack: None,

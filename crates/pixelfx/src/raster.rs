@@ -1,6 +1,11 @@
 //! Triangle rasterization: spans from [`crate::setup`], clipping, and the per-pixel walk
 //! with the iterators (spec 5.15 `triangleCMD`, 5.21 clip registers, 5.19 Y origin).
 
+use std::ops::Range;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, PoisonError};
+use std::time::{Duration, Instant};
+
 pub use sst1_regs::LanePlace;
 use sst1_regs::Rgba;
 
@@ -140,9 +145,27 @@ impl Fbi {
     /// Shade large triangles on `threads` render threads (1: on the calling thread only;
     /// 0 counts as 1, more than [`MAX_THREADS`] as that); a textured one only where its
     /// [`TexelSource::share`] agrees. Pixels and counters are the same for every count;
-    /// the threads are rayon's global pool.
+    /// the calling thread is one of them, and the others are a pool of this FBI's own
+    /// (one that cannot be started leaves the FBI on the calling thread alone).
     pub fn set_threads(&mut self, threads: usize) {
-        self.threads = threads.clamp(1, MAX_THREADS);
+        let threads = threads.clamp(1, MAX_THREADS);
+        if threads == self.threads {
+            return;
+        }
+        // A pool of exactly the helpers: with more threads than cores, a helper woken for
+        // a triangle may wait for the calling thread's core and start only once the
+        // triangle is done.
+        self.helpers = (threads > 1)
+            .then(|| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads - 1)
+                    .thread_name(|i| format!("voodoo-render-{i}"))
+                    .build()
+                    .ok()
+            })
+            .flatten()
+            .map(std::sync::Arc::new);
+        self.threads = if self.helpers.is_some() { threads } else { 1 };
     }
 
     /// Run the copy of the span kernels compiled for `cap`, or the best one the CPU has
@@ -463,17 +486,17 @@ impl Fbi {
         }
     }
 
-    /// Shade `rows` (a triangle's, clipped) in bands of [`BAND_ROWS`] rows dealt
-    /// round-robin to the render threads, each band with its own counters, added up
-    /// afterwards, and its own view of the texel source ([`TexelSource::band`]). Returns
-    /// `false`, having done nothing, where that could differ from shading the rows in
-    /// order: a small triangle (not worth the threads), a texel source that cannot be
-    /// shared, a row whose
-    /// lanes would reach past the frame-buffer row's end (the single walk lets them run
-    /// on into the next row), two rows on one frame-buffer row (the Y-origin flip wraps at
-    /// 1024), or colour and aux rows that share memory. Otherwise every row
-    /// touches only its own words, so the bands give the pixels and counters of the
-    /// single walk whatever the thread count.
+    /// Shade `rows` (a triangle's, clipped) in bands taken from one queue by the render
+    /// threads, each thread with its own counters, added up afterwards, and its own view
+    /// of the texel source ([`TexelSource::band`]). A band ([`band_rows`]) is rows whose
+    /// words (colour and aux alike, at the same offsets) meet no other band's: a row whose
+    /// lanes run past the frame-buffer row's end into the next row, as the single walk
+    /// lets them, shares a band with the rows it meets, and so do two rows on one
+    /// frame-buffer row (the Y-origin flip wraps at 1024); a band shades its rows in the
+    /// walk's order. So the bands give the pixels and counters of the single walk
+    /// whatever the thread count. Returns `false`, having done nothing, for a small
+    /// triangle (not worth the threads), a texel source that cannot be shared, colour
+    /// and aux words that share memory, or rows that make only one band.
     fn shade_rows_threaded<M: PixelModel, T: TexelSource>(
         &mut self,
         st: &DrawState,
@@ -482,69 +505,68 @@ impl Fbi {
         consts: &TriangleConsts,
         tex: &mut T,
     ) -> bool {
-        let row_pixels = self.fb.layout.row_pixels as usize;
+        let row_pixels = i64::from(self.fb.layout.row_pixels);
         let pixels: usize = rows.iter().map(|r| (r.stop - r.start) as usize).sum();
         if self.threads < 2 || row_pixels == 0 || pixels < MIN_THREADED_PIXELS {
-            return false;
-        }
-        // Columns left of 0 have no words on either walk (`Words::from_start`,
-        // `FrameBuffer::index`), so a row may start there; columns at and past the row's
-        // end run on into the next row.
-        if rows.iter().any(|r| r.stop as usize > row_pixels) {
-            return false;
-        }
-        // The Y-origin flip keeps 10 bits (`Fbi::screen_y`): rows 1024 apart share a
-        // frame-buffer row, which the single walk visits twice in order.
-        let raster_ys = rows.iter().map(|r| r.y);
-        let (Some(lowest), Some(highest)) = (raster_ys.clone().min(), raster_ys.max()) else {
-            return false;
-        };
-        if st.mode.y_origin() && highest - lowest >= 1024 {
             return false;
         }
         if st.color_path.texture_enable() && st.fetch_texel && !tex.share() {
             return false;
         }
-        let ys = rows.iter().filter(|r| r.scry >= 0).map(|r| r.scry as usize);
-        let (Some(ymin), Some(ymax)) = (ys.clone().min(), ys.max()) else {
+        let bands = band_rows(rows, row_pixels);
+        if bands.len() < 2 {
+            return false;
+        }
+        // Every band's words, as offsets from a buffer's base, and the span of them all.
+        let (Some(lowest), Some(highest)) = (
+            bands
+                .iter()
+                .filter_map(|b| b.words.clone())
+                .map(|w| w.start)
+                .min(),
+            bands
+                .iter()
+                .filter_map(|b| b.words.clone())
+                .map(|w| w.end)
+                .max(),
+        ) else {
             return false;
         };
         let len = self.fb.ram.len();
-        let region = |base: usize| {
-            (base + ymin * row_pixels).min(len)..(base + (ymax + 1) * row_pixels).min(len)
-        };
-        let colour = region(st.dest);
-        let aux = st.aux.map(region).unwrap_or(0..0);
+        let colour = existing(st.dest, &(lowest..highest), len);
+        let aux = st
+            .aux
+            .map_or(0..0, |b| existing(b, &(lowest..highest), len));
         let ram = &mut self.fb.ram[..];
         let (colour_words, aux_words): (&mut [u16], &mut [u16]) = if aux.is_empty() {
-            (&mut ram[colour], &mut [])
+            (&mut ram[colour.clone()], &mut [])
         } else if colour.is_empty() {
-            (&mut [], &mut ram[aux])
+            (&mut [], &mut ram[aux.clone()])
         } else if aux.start >= colour.end {
             let (lo, hi) = ram.split_at_mut(aux.start);
-            (&mut lo[colour], &mut hi[..aux.len()])
+            (&mut lo[colour.clone()], &mut hi[..aux.len()])
         } else if colour.start >= aux.end {
             let (lo, hi) = ram.split_at_mut(colour.start);
-            (&mut hi[..colour.len()], &mut lo[aux])
+            (&mut hi[..colour.len()], &mut lo[aux.clone()])
         } else {
             return false;
         };
-        let mut colour_rows: Vec<Option<&mut [u16]>> =
-            colour_words.chunks_mut(row_pixels).map(Some).collect();
-        let mut aux_rows: Vec<Option<&mut [u16]>> =
-            aux_words.chunks_mut(row_pixels).map(Some).collect();
-        let threads = self.threads;
-        let mut bands: Vec<Vec<BandRow<'_>>> = (0..threads).map(|_| Vec::new()).collect();
-        for (i, row) in rows.iter().enumerate() {
-            let k = (row.scry >= 0).then(|| row.scry as usize - ymin);
-            let (colour, aux) = (take_row(&mut colour_rows, k), take_row(&mut aux_rows, k));
-            bands[(i / BAND_ROWS) % threads].push(BandRow {
-                row: *row,
+        let colour_bands = cut_bands(&bands, colour_words, colour.start, Some(st.dest));
+        let aux_bands = cut_bands(&bands, aux_words, aux.start, st.aux);
+        let parts = bands.iter().zip(colour_bands).zip(aux_bands);
+        let jobs: Vec<BandJob<'_>> = parts
+            .map(|((band, colour), aux)| BandJob {
+                rows: band.rows.iter().map(|&i| rows[i]).collect(),
                 colour,
                 aux,
-            });
-        }
-        let mut counters = vec![(Stats::default(), PathCounts::default()); threads];
+            })
+            .collect();
+        // This thread and up to `threads - 1` of the pool's take the bands from one
+        // queue, a band at a time: a thread that starts late (woken from sleep) takes
+        // fewer, and this thread never waits idle for one to start.
+        let helpers_spawned = (self.threads - 1).min(jobs.len() - 1);
+        let queue = Mutex::new(jobs.into_iter());
+        let mut counters = vec![ThreadCounters::default(); helpers_spawned + 1];
         let (dither, fog_table, params, profile, isa) = (
             &self.dither,
             &self.fog_table,
@@ -552,25 +574,47 @@ impl Fbi {
             self.profile,
             self.isa,
         );
-        let sources: Vec<T::Band<'_>> = (0..threads).map(|_| tex.band()).collect();
-        rayon::scope(|scope| {
-            let jobs = bands.into_iter().zip(counters.iter_mut()).zip(sources);
-            for ((band, (stats, counts)), mut source) in jobs {
+        let shade_queued = |ThreadCounters(stats, counts): &mut ThreadCounters,
+                            mut source: T::Band<'_>| {
+            let mut shader = Shader {
+                stats,
+                counts,
+                dither,
+                fog_table,
+                params,
+                profile,
+                isa,
+            };
+            let next = || queue.lock().unwrap_or_else(PoisonError::into_inner).next();
+            while let Some(job) = next() {
+                shade_band::<M, _>(&mut shader, st, job, (a, row_pixels), consts, &mut source);
+            }
+        };
+        let (here, pool) = counters.split_first_mut().expect("one counter per thread");
+        let Some(helpers) = self.helpers.as_deref() else {
+            return false;
+        };
+        let finished = AtomicUsize::new(0);
+        helpers.in_place_scope(|scope| {
+            for counter in pool {
+                let source = tex.band();
+                let (shade_queued, finished) = (&shade_queued, &finished);
                 scope.spawn(move |_| {
-                    let mut shader = Shader {
-                        stats,
-                        counts,
-                        dither,
-                        fog_table,
-                        params,
-                        profile,
-                        isa,
-                    };
-                    shade_band_rows::<M, _>(&mut shader, st, band, a, consts, &mut source);
+                    shade_queued(counter, source);
+                    finished.fetch_add(1, Ordering::Release);
                 });
             }
+            shade_queued(here, tex.band());
+            // The queue is empty, so each helper is at most one band from done: wait for
+            // them here rather than sleep at the scope's end, whose wake-up takes longer
+            // than a band. A helper that has not started is not waited for here.
+            let waited = Instant::now();
+            while finished.load(Ordering::Acquire) < helpers_spawned && waited.elapsed() < END_SPIN
+            {
+                std::hint::spin_loop();
+            }
         });
-        for (stats, counts) in &counters {
+        for ThreadCounters(stats, counts) in &counters {
             self.stats.add(stats);
             self.path_counts.add(counts);
             self.path_counts.in_bands += counts.span_kernels;
@@ -579,15 +623,124 @@ impl Fbi {
     }
 }
 
-/// Row `k` of `rows`, taken out (empty where there is none).
-fn take_row<'m>(rows: &mut [Option<&'m mut [u16]>], k: Option<usize>) -> &'m mut [u16] {
-    k.and_then(|k| rows.get_mut(k))
-        .and_then(Option::take)
-        .unwrap_or_default()
+/// One render thread's counters, alone in their cache lines: the threads update them
+/// chunk by chunk, and counters that shared a line would move it from core to core.
+#[derive(Clone, Default)]
+#[repr(align(128))]
+struct ThreadCounters(Stats, PathCounts);
+
+/// The words at offsets `w` from the buffer at `base` that exist in a memory of `len`
+/// words.
+fn existing(base: usize, w: &Range<i64>, len: usize) -> Range<usize> {
+    let len = len as i64;
+    let (lo, hi) = (base as i64 + w.start, base as i64 + w.end);
+    (lo.min(len) as usize)..(hi.min(len).max(lo.min(len)) as usize)
+}
+
+/// Each band's words of one buffer (at `base`; `None`: no such buffer), cut from `words`,
+/// the region of them all, which starts at word `first` (the bands are in memory order).
+fn cut_bands<'m>(
+    bands: &[Band],
+    mut words: &'m mut [u16],
+    first: usize,
+    base: Option<usize>,
+) -> Vec<BandWords<'m>> {
+    let end = first + words.len();
+    let mut at = first;
+    let mut slices = Vec::with_capacity(bands.len());
+    for band in bands {
+        let own = match (base, &band.words) {
+            (Some(base), Some(w)) => existing(base, w, end),
+            _ => at..at,
+        };
+        let own = own.start.max(at)..own.end.max(at);
+        let (_, rest) = std::mem::take(&mut words).split_at_mut(own.start - at);
+        let (mine, rest) = rest.split_at_mut(own.len());
+        words = rest;
+        at = own.end;
+        slices.push(BandWords {
+            words: mine,
+            first: own.start as i64 - base.map_or(0, |b| b as i64),
+        });
+    }
+    slices
+}
+
+/// Rows of a triangle's walk that one render thread shades, in the walk's order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+struct Band {
+    /// The rows, as indices of the walk, in order.
+    rows: Vec<usize>,
+    /// Offsets from a buffer's base of the words its rows may touch (`None`: none).
+    words: Option<Range<i64>>,
+}
+
+/// The offsets from a buffer's base of the words `row` may touch, as
+/// [`crate::fb::FrameBuffer::index`] finds them (no word left of column 0 or above row
+/// 0; columns past the row's end run on into the next row), memory's end not applied.
+fn row_words(row: &Row, row_pixels: i64) -> Option<Range<i64>> {
+    let first = i64::from(row.start.max(0));
+    let stop = i64::from(row.stop);
+    (row.scry >= 0 && first < stop).then(|| {
+        let at = i64::from(row.scry) * row_pixels;
+        at + first..at + stop
+    })
+}
+
+/// The walk's rows cut into [`Band`]s whose words do not meet, in memory order: the rows
+/// with words sorted by their first word, each band at least [`BAND_ROWS`] of them (the
+/// last may hold fewer), ending only where the next row's words start at or past the end
+/// of every word before; the rows with no words in bands of their own, first.
+fn band_rows(rows: &[Row], row_pixels: i64) -> Vec<Band> {
+    let words: Vec<Option<Range<i64>>> = rows.iter().map(|r| row_words(r, row_pixels)).collect();
+    let (mut placed, none): (Vec<usize>, Vec<usize>) =
+        (0..rows.len()).partition(|&i| words[i].is_some());
+    let mut bands: Vec<Band> = none
+        .chunks(BAND_ROWS)
+        .map(|c| Band {
+            rows: c.to_vec(),
+            words: None,
+        })
+        .collect();
+    let at = |i: usize| words[i].clone().unwrap_or_default();
+    placed.sort_by_key(|&i| at(i).start);
+    let mut band: Option<Band> = None;
+    for i in placed {
+        let w = at(i);
+        match &mut band {
+            Some(b) => {
+                let hull = b.words.clone().unwrap_or_default();
+                if b.rows.len() >= BAND_ROWS && w.start >= hull.end {
+                    bands.extend(band.replace(Band {
+                        rows: vec![i],
+                        words: Some(w),
+                    }));
+                } else {
+                    b.rows.push(i);
+                    b.words = Some(hull.start..hull.end.max(w.end));
+                }
+            }
+            None => {
+                band = Some(Band {
+                    rows: vec![i],
+                    words: Some(w),
+                })
+            }
+        }
+    }
+    bands.extend(band);
+    for b in &mut bands {
+        b.rows.sort_unstable();
+    }
+    bands
 }
 
 /// The most render threads [`Fbi::set_threads`] takes.
 pub const MAX_THREADS: usize = 256;
+
+/// How long the calling thread waits, spinning, for the render threads to finish a
+/// triangle's last bands before it sleeps until they do.
+const END_SPIN: Duration = Duration::from_micros(200);
 
 /// Rows per band of the threaded walk.
 const BAND_ROWS: usize = 4;
@@ -726,28 +879,41 @@ impl Pack {
     }
 }
 
-/// A row of a band with the frame-buffer rows it writes (empty where a buffer has none).
-struct BandRow<'m> {
-    row: Row,
-    colour: &'m mut [u16],
-    aux: &'m mut [u16],
+/// One buffer's words of a [`Band`]: the slice, and the offset from the buffer's base of
+/// its first word.
+struct BandWords<'m> {
+    words: &'m mut [u16],
+    first: i64,
 }
 
-/// The rows of a band, in order, a chunk at a time (the same chunks as
-/// [`Fbi::shade_row`]; no per-triangle stipple copy).
-fn shade_band_rows<M: PixelModel, T: TexelSource>(
+/// A band's rows with the words they touch.
+struct BandJob<'m> {
+    rows: Vec<Row>,
+    colour: BandWords<'m>,
+    aux: BandWords<'m>,
+}
+
+/// A band's rows in order, a chunk at a time (the same chunks as [`Fbi::shade_row`]; no
+/// per-triangle stipple copy).
+fn shade_band<M: PixelModel, T: TexelSource>(
     shader: &mut Shader<'_>,
     st: &DrawState,
-    band: Vec<BandRow<'_>>,
-    (ax, ay): (i32, i32),
+    BandJob { rows, colour, aux }: BandJob<'_>,
+    ((ax, ay), row_pixels): ((i32, i32), i64),
     consts: &TriangleConsts,
     tex: &mut T,
 ) {
-    for BandRow { row, colour, aux } in band {
+    let (colour_first, aux_first) = (colour.first, aux.first);
+    let mut memory = Memory::Band {
+        colour: colour.words,
+        aux: aux.words,
+    };
+    for row in rows {
         let dy = row.y - ay;
         let mut stipple = st.stipple;
-        let (colour_len, aux_len) = (colour.len(), aux.len());
-        let mut memory = Memory::Rows { colour, aux };
+        // Where the row's column 0 lies in each slice (no words above row 0).
+        let at = |first: i64| (row.scry >= 0).then(|| i64::from(row.scry) * row_pixels - first);
+        let (colour_at, aux_at) = (at(colour_first), at(aux_first));
         let mut x0 = row.start;
         while x0 < row.stop {
             let n = chunk_len((row.stop - x0) as usize);
@@ -762,13 +928,14 @@ fn shade_band_rows<M: PixelModel, T: TexelSource>(
                 dy,
             };
             let it = Iterated::at(shader.params, x0 - ax, dy);
+            let (colour_len, aux_len) = memory.lens();
             let place = RowPlace {
                 at: &at,
                 it: &it,
                 params: shader.params,
                 words: (
-                    Words::in_row(colour_len, x0, n),
-                    Words::in_row(aux_len, x0, n),
+                    Words::in_band(colour_at, colour_len, x0, n),
+                    Words::in_band(aux_at, aux_len, x0, n),
                 ),
             };
             let job = ChunkJob {
@@ -794,6 +961,73 @@ const SHORT_ROW: i32 = 2;
 mod tests {
     use super::*;
     use crate::setup::EdgeRounding;
+
+    /// The bands of random triangles' walks, unclipped, with and without the Y-origin
+    /// flip, on rows of 256, 640 and 1024 words: every row in one band, in the walk's
+    /// order; no word of one band's rows touched by another's; bands in memory order, each
+    /// but the last of at least `BAND_ROWS` rows; and a walk whose rows all end within the
+    /// pitch cut every `BAND_ROWS` rows.
+    #[test]
+    fn bands_hold_every_row_and_share_no_word() {
+        let triangles = setup::random_triangles(0x9e37_79b9_7f4a_7c15, 600, &[4096, 16384, 40000]);
+        let (mut overlapping, mut cut_at_pitch) = (0, 0);
+        for (k, p) in triangles.enumerate() {
+            let row_pixels = [256, 640, 1024][k % 3];
+            let flip = k % 4 < 2;
+            let rows: Vec<Row> = setup::spans(&p, EdgeRounding::FloorHalfDown)
+                .map(|s| Row {
+                    y: s.y,
+                    scry: if flip { (200 - s.y) & 0x3ff } else { s.y },
+                    start: s.start,
+                    stop: s.stop,
+                    prow: s.y,
+                })
+                .collect();
+            let bands = band_rows(&rows, row_pixels);
+            let mut seen: Vec<usize> = bands.iter().flat_map(|b| b.rows.clone()).collect();
+            seen.sort_unstable();
+            assert_eq!(seen, (0..rows.len()).collect::<Vec<_>>(), "{p:?}");
+            let mut last_end = i64::MIN;
+            let placed: Vec<&Band> = bands.iter().filter(|b| b.words.is_some()).collect();
+            for (i, band) in placed.iter().enumerate() {
+                assert!(band.rows.windows(2).all(|w| w[0] < w[1]), "{p:?}");
+                let hull = band.words.clone().unwrap_or_default();
+                assert!(hull.start >= last_end, "{p:?}: bands out of memory order");
+                last_end = hull.end;
+                for &r in &band.rows {
+                    let w = row_words(&rows[r], row_pixels).unwrap_or_default();
+                    assert!(hull.start <= w.start && w.end <= hull.end, "{p:?}");
+                }
+                if i + 1 < placed.len() {
+                    assert!(band.rows.len() >= BAND_ROWS, "{p:?}: a short band");
+                }
+            }
+            let words: Vec<_> = rows.iter().map(|r| row_words(r, row_pixels)).collect();
+            let mut sorted: Vec<_> = words.iter().flatten().collect();
+            sorted.sort_by_key(|w| w.start);
+            // Rows whose words meet: a row starting before an earlier row's end.
+            let mut end = i64::MIN;
+            let mut meet = false;
+            for w in sorted {
+                meet |= w.start < end;
+                end = end.max(w.end);
+            }
+            overlapping += u32::from(meet);
+            let within = words.iter().flatten().count();
+            if !flip
+                && rows
+                    .iter()
+                    .all(|r| r.start >= 0 && i64::from(r.stop) <= row_pixels)
+            {
+                assert_eq!(placed.len(), within.div_ceil(BAND_ROWS), "{p:?}");
+                cut_at_pitch += 1;
+            }
+        }
+        assert!(
+            overlapping > 30 && cut_at_pitch > 20,
+            "{overlapping} {cut_at_pitch}"
+        );
+    }
 
     /// The bounding box never holds fewer pixels than a walk covers, for every walk, on
     /// random triangles from slivers to the whole 12.4 range.

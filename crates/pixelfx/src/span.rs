@@ -69,11 +69,13 @@ impl Words {
         Self::from_start(start, fbi.fb.ram.len() as i64, x0, n)
     }
 
-    /// The words of `n` lanes from column `x0` of a row held alone in a slice of `len`
-    /// words (the threaded walk; the caller has checked that no lane lies beyond the
-    /// row).
-    pub(crate) fn in_row(len: usize, x0: i32, n: usize) -> Self {
-        Self::from_start(x0 as i64, len as i64, x0, n)
+    /// The words of `n` lanes from column `x0` of a row whose column 0 lies at `row_at`
+    /// of a band's slice of `len` words (`None`: a row with no words; the threaded walk,
+    /// whose bands hold every word their rows touch within memory).
+    pub(crate) fn in_band(row_at: Option<i64>, len: usize, x0: i32, n: usize) -> Self {
+        row_at.map_or(Self::NONE, |at| {
+            Self::from_start(at + x0 as i64, len as i64, x0, n)
+        })
     }
 
     /// Lane `i` at word `start + i`, existing where the column is not negative and the
@@ -757,25 +759,34 @@ fn combine_channel<const L: usize>(
     }
 }
 
-/// Where a chunk's words are: the whole frame buffer (word indices), or one row of the
-/// colour buffer and one of the aux buffer (a band of the threaded walk).
+/// Where a chunk's words are: the whole frame buffer (word indices), or a band's words of
+/// the colour buffer and of the aux buffer (the threaded walk).
 pub(crate) enum Memory<'m> {
     /// The frame buffer; [`Words`] index it.
     Whole(&'m mut [u16]),
-    /// A row of each buffer (empty where the buffer has no such row); [`Words`] index
-    /// each row.
-    Rows {
+    /// A band's words of each buffer (empty where it has none); [`Words`] index each
+    /// slice.
+    Band {
         colour: &'m mut [u16],
         aux: &'m mut [u16],
     },
 }
 
 impl Memory<'_> {
+    /// The words of the colour buffer and of the aux buffer.
+    #[inline(always)]
+    pub(crate) fn lens(&self) -> (usize, usize) {
+        match self {
+            Memory::Whole(ram) => (ram.len(), ram.len()),
+            Memory::Band { colour, aux } => (colour.len(), aux.len()),
+        }
+    }
+
     #[inline(always)]
     fn colour(&mut self) -> &mut [u16] {
         match self {
             Memory::Whole(ram) => ram,
-            Memory::Rows { colour, .. } => colour,
+            Memory::Band { colour, .. } => colour,
         }
     }
 
@@ -783,7 +794,7 @@ impl Memory<'_> {
     fn aux(&mut self) -> &mut [u16] {
         match self {
             Memory::Whole(ram) => ram,
-            Memory::Rows { aux, .. } => aux,
+            Memory::Band { aux, .. } => aux,
         }
     }
 }
