@@ -1,6 +1,7 @@
 //! Triangle rasterization: spans from [`crate::setup`], clipping, and the per-pixel walk
 //! with the iterators (spec 5.15 `triangleCMD`, 5.21 clip registers, 5.19 Y origin).
 
+use std::collections::VecDeque;
 use std::ops::Range;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
@@ -563,9 +564,13 @@ impl Fbi {
             .collect();
         // This thread and up to `threads - 1` of the pool's take the bands from one
         // queue, a band at a time: a thread that starts late (woken from sleep) takes
-        // fewer, and this thread never waits idle for one to start.
+        // fewer, and this thread never waits idle for one to start. This thread takes
+        // them from the front, the helpers from the back: neighbouring bands share the
+        // cache line at their boundary (rows need not start on a line), and two threads
+        // shading neighbours at once move it from core to core (1.1x on
+        // perf_gouraud_heavy against both taking from the front).
         let helpers_spawned = (self.threads - 1).min(jobs.len() - 1);
-        let queue = Mutex::new(jobs.into_iter());
+        let queue = Mutex::new(VecDeque::from(jobs));
         let mut counters = vec![ThreadCounters::default(); helpers_spawned + 1];
         let (dither, fog_table, params, profile, isa) = (
             &self.dither,
@@ -575,7 +580,8 @@ impl Fbi {
             self.isa,
         );
         let shade_queued = |ThreadCounters(stats, counts): &mut ThreadCounters,
-                            mut source: T::Band<'_>| {
+                            mut source: T::Band<'_>,
+                            from_back: bool| {
             let mut shader = Shader {
                 stats,
                 counts,
@@ -585,7 +591,14 @@ impl Fbi {
                 profile,
                 isa,
             };
-            let next = || queue.lock().unwrap_or_else(PoisonError::into_inner).next();
+            let next = || {
+                let mut queue = queue.lock().unwrap_or_else(PoisonError::into_inner);
+                if from_back {
+                    queue.pop_back()
+                } else {
+                    queue.pop_front()
+                }
+            };
             while let Some(job) = next() {
                 shade_band::<M, _>(&mut shader, st, job, (a, row_pixels), consts, &mut source);
             }
@@ -600,14 +613,14 @@ impl Fbi {
                 let source = tex.band();
                 let (shade_queued, finished) = (&shade_queued, &finished);
                 scope.spawn(move |_| {
-                    shade_queued(counter, source);
+                    shade_queued(counter, source, true);
                     finished.fetch_add(1, Ordering::Release);
                 });
             }
-            shade_queued(here, tex.band());
+            shade_queued(here, tex.band(), false);
             // The queue is empty, so each helper is at most one band from done: wait for
             // them here rather than sleep at the scope's end, whose wake-up takes longer
-            // than a band. A helper that has not started is not waited for here.
+            // than a band; one that has not started is waited for here only so long.
             let waited = Instant::now();
             while finished.load(Ordering::Acquire) < helpers_spawned && waited.elapsed() < END_SPIN
             {
