@@ -514,7 +514,8 @@ impl Fbi {
         if st.color_path.texture_enable() && st.fetch_texel && !tex.share() {
             return false;
         }
-        let bands = band_rows(rows, row_pixels);
+        let pieces = row_pieces(rows, row_pixels);
+        let bands = band_rows(&pieces, row_pixels);
         if bands.len() < 2 {
             return false;
         }
@@ -557,7 +558,7 @@ impl Fbi {
         let parts = bands.iter().zip(colour_bands).zip(aux_bands);
         let jobs: Vec<BandJob<'_>> = parts
             .map(|((band, colour), aux)| BandJob {
-                rows: band.rows.iter().map(|&i| rows[i]).collect(),
+                rows: band.rows.iter().map(|&i| pieces[i]).collect(),
                 colour,
                 aux,
             })
@@ -679,6 +680,44 @@ fn cut_bands<'m>(
     slices
 }
 
+/// A piece of a row of the walk: the columns of one frame-buffer row's words (a row
+/// whose lanes run past the pitch into the next row is cut there, so that its pieces
+/// and the next row's may go to different bands), and the column the row starts at.
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    row: Row,
+    row_start: i32,
+}
+
+/// The walk's rows in pieces, in the walk's order ([`Piece`]): each row cut at every
+/// column that is a multiple of the pitch; columns left of 0 stay with the first piece,
+/// and a row above row 0 (no words) stays whole.
+fn row_pieces(rows: &[Row], row_pixels: i64) -> Vec<Piece> {
+    let mut pieces = Vec::with_capacity(rows.len());
+    for row in rows {
+        let mut start = row.start;
+        while start < row.stop {
+            let column = i64::from(start.max(0));
+            let end = if row.scry < 0 {
+                row.stop
+            } else {
+                let next_pitch = (column / row_pixels + 1) * row_pixels;
+                next_pitch.min(i64::from(row.stop)) as i32
+            };
+            pieces.push(Piece {
+                row: Row {
+                    start,
+                    stop: end,
+                    ..*row
+                },
+                row_start: row.start,
+            });
+            start = end;
+        }
+    }
+    pieces
+}
+
 /// Rows of a triangle's walk that one render thread shades, in the walk's order.
 #[derive(Clone, Debug, PartialEq, Eq)]
 struct Band {
@@ -704,8 +743,9 @@ fn row_words(row: &Row, row_pixels: i64) -> Option<Range<i64>> {
 /// with words sorted by their first word, each band at least [`BAND_ROWS`] of them (the
 /// last may hold fewer), ending only where the next row's words start at or past the end
 /// of every word before; the rows with no words in bands of their own, first.
-fn band_rows(rows: &[Row], row_pixels: i64) -> Vec<Band> {
-    let words: Vec<Option<Range<i64>>> = rows.iter().map(|r| row_words(r, row_pixels)).collect();
+fn band_rows(rows: &[Piece], row_pixels: i64) -> Vec<Band> {
+    let words: Vec<Option<Range<i64>>> =
+        rows.iter().map(|p| row_words(&p.row, row_pixels)).collect();
     let (mut placed, none): (Vec<usize>, Vec<usize>) =
         (0..rows.len()).partition(|&i| words[i].is_some());
     let mut bands: Vec<Band> = none
@@ -901,12 +941,12 @@ struct BandWords<'m> {
 
 /// A band's rows with the words they touch.
 struct BandJob<'m> {
-    rows: Vec<Row>,
+    rows: Vec<Piece>,
     colour: BandWords<'m>,
     aux: BandWords<'m>,
 }
 
-/// A band's rows in order, a chunk at a time (the same chunks as [`Fbi::shade_row`]; no
+/// A band's row pieces in order, a chunk at a time from each piece's first column (no
 /// per-triangle stipple copy).
 fn shade_band<M: PixelModel, T: TexelSource>(
     shader: &mut Shader<'_>,
@@ -921,9 +961,10 @@ fn shade_band<M: PixelModel, T: TexelSource>(
         colour: colour.words,
         aux: aux.words,
     };
-    for row in rows {
+    for Piece { row, row_start } in rows {
         let dy = row.y - ay;
-        let mut stipple = st.stipple;
+        // Rotate-mode stipple steps once for every pixel of the row before the piece.
+        let mut stipple = st.stipple.rotate_left((row.start - row_start) as u32);
         // Where the row's column 0 lies in each slice (no words above row 0).
         let at = |first: i64| (row.scry >= 0).then(|| i64::from(row.scry) * row_pixels - first);
         let (colour_at, aux_at) = (at(colour_first), at(aux_first));
@@ -936,7 +977,7 @@ fn shade_band<M: PixelModel, T: TexelSource>(
                 y: row.y,
                 scry: row.scry,
                 prow: row.prow,
-                span_start: row.start,
+                span_start: row_start,
                 ax,
                 dy,
             };
@@ -976,14 +1017,15 @@ mod tests {
     use crate::setup::EdgeRounding;
 
     /// The bands of random triangles' walks, unclipped, with and without the Y-origin
-    /// flip, on rows of 256, 640 and 1024 words: every row in one band, in the walk's
-    /// order; no word of one band's rows touched by another's; bands in memory order, each
-    /// but the last of at least `BAND_ROWS` rows; and a walk whose rows all end within the
-    /// pitch cut every `BAND_ROWS` rows.
+    /// flip, on rows of 256, 640 and 1024 words: each row's pieces cover its columns in
+    /// order, each piece's words in one frame-buffer row; every piece in one band, in the
+    /// walk's order; no word of one band's pieces touched by another's; bands in memory
+    /// order, each but the last of at least `BAND_ROWS` pieces; and a walk whose rows all
+    /// end within the pitch cut every `BAND_ROWS` rows.
     #[test]
     fn bands_hold_every_row_and_share_no_word() {
         let triangles = setup::random_triangles(0x9e37_79b9_7f4a_7c15, 600, &[4096, 16384, 40000]);
-        let (mut overlapping, mut cut_at_pitch) = (0, 0);
+        let (mut past_pitch, mut cut_at_pitch) = (0, 0);
         for (k, p) in triangles.enumerate() {
             let row_pixels = [256, 640, 1024][k % 3];
             let flip = k % 4 < 2;
@@ -996,10 +1038,25 @@ mod tests {
                     prow: s.y,
                 })
                 .collect();
-            let bands = band_rows(&rows, row_pixels);
+            let pieces = row_pieces(&rows, row_pixels);
+            let mut at = 0;
+            for row in &rows {
+                let mut x = row.start;
+                while x < row.stop {
+                    let piece = pieces[at];
+                    assert_eq!((piece.row.start, piece.row_start), (x, row.start), "{p:?}");
+                    if let Some(w) = row_words(&piece.row, row_pixels) {
+                        assert_eq!(w.start / row_pixels, (w.end - 1) / row_pixels, "{p:?}");
+                    }
+                    (x, at) = (piece.row.stop, at + 1);
+                }
+                assert_eq!(x, row.stop, "{p:?}");
+            }
+            assert_eq!(at, pieces.len(), "{p:?}");
+            let bands = band_rows(&pieces, row_pixels);
             let mut seen: Vec<usize> = bands.iter().flat_map(|b| b.rows.clone()).collect();
             seen.sort_unstable();
-            assert_eq!(seen, (0..rows.len()).collect::<Vec<_>>(), "{p:?}");
+            assert_eq!(seen, (0..pieces.len()).collect::<Vec<_>>(), "{p:?}");
             let mut last_end = i64::MIN;
             let placed: Vec<&Band> = bands.iter().filter(|b| b.words.is_some()).collect();
             for (i, band) in placed.iter().enumerate() {
@@ -1008,25 +1065,18 @@ mod tests {
                 assert!(hull.start >= last_end, "{p:?}: bands out of memory order");
                 last_end = hull.end;
                 for &r in &band.rows {
-                    let w = row_words(&rows[r], row_pixels).unwrap_or_default();
+                    let w = row_words(&pieces[r].row, row_pixels).unwrap_or_default();
                     assert!(hull.start <= w.start && w.end <= hull.end, "{p:?}");
                 }
                 if i + 1 < placed.len() {
                     assert!(band.rows.len() >= BAND_ROWS, "{p:?}: a short band");
                 }
             }
-            let words: Vec<_> = rows.iter().map(|r| row_words(r, row_pixels)).collect();
-            let mut sorted: Vec<_> = words.iter().flatten().collect();
-            sorted.sort_by_key(|w| w.start);
-            // Rows whose words meet: a row starting before an earlier row's end.
-            let mut end = i64::MIN;
-            let mut meet = false;
-            for w in sorted {
-                meet |= w.start < end;
-                end = end.max(w.end);
-            }
-            overlapping += u32::from(meet);
-            let within = words.iter().flatten().count();
+            past_pitch += u32::from(pieces.len() > rows.len());
+            let within = rows
+                .iter()
+                .filter(|r| row_words(r, row_pixels).is_some())
+                .count();
             if !flip
                 && rows
                     .iter()
@@ -1037,8 +1087,8 @@ mod tests {
             }
         }
         assert!(
-            overlapping > 30 && cut_at_pitch > 20,
-            "{overlapping} {cut_at_pitch}"
+            past_pitch > 30 && cut_at_pitch > 20,
+            "{past_pitch} {cut_at_pitch}"
         );
     }
 
