@@ -62,14 +62,8 @@ fn stream(seed: u64) -> Vec<(u32, u32)> {
                 w.push((reg, (x * 16 + within(&mut rng, 0, 16)) as u32));
                 w.push((reg + 4, (y * 16 + within(&mut rng, 0, 16)) as u32));
             }
-            for reg in [
-                addr::START_R,
-                addr::START_G,
-                addr::START_B,
-                addr::START_A,
-                addr::START_Z,
-                addr::START_W,
-            ] {
+            // Every iterated parameter's start and gradients (S and T unused: untextured).
+            for reg in (addr::START_R..=addr::START_W).step_by(4) {
                 // Starts anywhere in range, small steps either way.
                 w.push((reg, rng.u32() & 0x00ff_ffff));
                 w.push((reg + 0x20, within(&mut rng, -0x800, 0x800) as u32));
@@ -132,7 +126,7 @@ fn bands_of_rows_past_the_pitch_equal_the_reference_path() {
     }
     // Before bands could hold rows past the pitch, none of these triangles was banded.
     assert!(
-        banded * 20 > shaded * 17,
+        banded * 5 > shaded * 4,
         "{banded} of {shaded} pixels shaded in bands"
     );
 }
