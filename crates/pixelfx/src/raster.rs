@@ -508,7 +508,10 @@ impl Fbi {
     ) -> bool {
         let row_pixels = i64::from(self.fb.layout.row_pixels);
         let pixels: usize = rows.iter().map(|r| (r.stop - r.start) as usize).sum();
-        if self.threads < 2 || row_pixels == 0 || pixels < MIN_THREADED_PIXELS {
+        let Some(helpers) = self.helpers.clone() else {
+            return false;
+        };
+        if row_pixels == 0 || pixels < MIN_THREADED_PIXELS {
             return false;
         }
         if st.color_path.texture_enable() && st.fetch_texel && !tex.share() {
@@ -519,21 +522,13 @@ impl Fbi {
         if bands.len() < 2 {
             return false;
         }
-        // Every band's words, as offsets from a buffer's base, and the span of them all.
-        let (Some(lowest), Some(highest)) = (
-            bands
-                .iter()
-                .filter_map(|b| b.words.clone())
-                .map(|w| w.start)
-                .min(),
-            bands
-                .iter()
-                .filter_map(|b| b.words.clone())
-                .map(|w| w.end)
-                .max(),
-        ) else {
+        // The span of every band's words, as offsets from a buffer's base: the bands with
+        // words are in memory order, and each ends at or past every word before it.
+        let mut placed = bands.iter().filter_map(|b| b.words.as_ref());
+        let Some(first) = placed.next() else {
             return false;
         };
+        let (lowest, highest) = (first.start, placed.next_back().unwrap_or(first).end);
         let len = self.fb.ram.len();
         let colour = existing(st.dest, &(lowest..highest), len);
         let aux = st
@@ -605,9 +600,6 @@ impl Fbi {
             }
         };
         let (here, pool) = counters.split_first_mut().expect("one counter per thread");
-        let Some(helpers) = self.helpers.as_deref() else {
-            return false;
-        };
         let finished = AtomicUsize::new(0);
         helpers.in_place_scope(|scope| {
             for counter in pool {
@@ -718,12 +710,12 @@ fn row_pieces(rows: &[Row], row_pixels: i64) -> Vec<Piece> {
     pieces
 }
 
-/// Rows of a triangle's walk that one render thread shades, in the walk's order.
+/// Row pieces of a triangle's walk that one render thread shades, in the walk's order.
 #[derive(Clone, Debug, PartialEq, Eq)]
 struct Band {
-    /// The rows, as indices of the walk, in order.
+    /// The pieces, as indices of [`row_pieces`]' list (in the walk's order), in order.
     rows: Vec<usize>,
-    /// Offsets from a buffer's base of the words its rows may touch (`None`: none).
+    /// Offsets from a buffer's base of the words its pieces may touch (`None`: none).
     words: Option<Range<i64>>,
 }
 
@@ -739,15 +731,17 @@ fn row_words(row: &Row, row_pixels: i64) -> Option<Range<i64>> {
     })
 }
 
-/// The walk's rows cut into [`Band`]s whose words do not meet, in memory order: the rows
-/// with words sorted by their first word, each band at least [`BAND_ROWS`] of them (the
-/// last may hold fewer), ending only where the next row's words start at or past the end
-/// of every word before; the rows with no words in bands of their own, first.
-fn band_rows(rows: &[Piece], row_pixels: i64) -> Vec<Band> {
-    let words: Vec<Option<Range<i64>>> =
-        rows.iter().map(|p| row_words(&p.row, row_pixels)).collect();
+/// The walk's row pieces cut into [`Band`]s whose words do not meet, in memory order: the
+/// pieces with words sorted by their first word, each band at least [`BAND_ROWS`] of them
+/// (the last may hold fewer), ending only where the next piece's words start at or past
+/// the end of every word before; the pieces with no words in bands of their own, first.
+fn band_rows(pieces: &[Piece], row_pixels: i64) -> Vec<Band> {
+    let words: Vec<Option<Range<i64>>> = pieces
+        .iter()
+        .map(|p| row_words(&p.row, row_pixels))
+        .collect();
     let (mut placed, none): (Vec<usize>, Vec<usize>) =
-        (0..rows.len()).partition(|&i| words[i].is_some());
+        (0..pieces.len()).partition(|&i| words[i].is_some());
     let mut bands: Vec<Band> = none
         .chunks(BAND_ROWS)
         .map(|c| Band {
@@ -939,7 +933,7 @@ struct BandWords<'m> {
     first: i64,
 }
 
-/// A band's rows with the words they touch.
+/// A band's row pieces with the words they touch.
 struct BandJob<'m> {
     rows: Vec<Piece>,
     colour: BandWords<'m>,
@@ -957,6 +951,7 @@ fn shade_band<M: PixelModel, T: TexelSource>(
     tex: &mut T,
 ) {
     let (colour_first, aux_first) = (colour.first, aux.first);
+    let (colour_len, aux_len) = (colour.words.len(), aux.words.len());
     let mut memory = Memory::Band {
         colour: colour.words,
         aux: aux.words,
@@ -982,7 +977,6 @@ fn shade_band<M: PixelModel, T: TexelSource>(
                 dy,
             };
             let it = Iterated::at(shader.params, x0 - ax, dy);
-            let (colour_len, aux_len) = memory.lens();
             let place = RowPlace {
                 at: &at,
                 it: &it,

@@ -773,15 +773,6 @@ pub(crate) enum Memory<'m> {
 }
 
 impl Memory<'_> {
-    /// The words of the colour buffer and of the aux buffer.
-    #[inline(always)]
-    pub(crate) fn lens(&self) -> (usize, usize) {
-        match self {
-            Memory::Whole(ram) => (ram.len(), ram.len()),
-            Memory::Band { colour, aux } => (colour.len(), aux.len()),
-        }
-    }
-
     #[inline(always)]
     fn colour(&mut self) -> &mut [u16] {
         match self {
