@@ -57,7 +57,7 @@ pub struct Fbi {
     pub(crate) threads: usize,
     /// The render threads other than the calling one (`threads - 1` of them; `None`
     /// with one render thread).
-    pub(crate) helpers: Option<std::sync::Arc<rayon::ThreadPool>>,
+    pub(crate) helpers: Option<std::sync::Arc<crate::helpers::Helpers>>,
     /// The copy of the span kernels that runs ([`Fbi::set_vector_isa`]).
     pub(crate) isa: crate::VectorIsa,
     /// The pixel whose history is recorded ([`Fbi::set_watch`]), if any.

@@ -13,6 +13,7 @@ pub mod fastfill;
 pub mod fb;
 pub mod fbi;
 pub mod fog;
+mod helpers;
 pub mod isa;
 pub mod iter;
 pub mod lfb;

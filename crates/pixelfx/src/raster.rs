@@ -12,6 +12,7 @@ use sst1_regs::Rgba;
 
 use crate::fbi::Fbi;
 use crate::fbi::PathCounts;
+use crate::helpers::Helpers;
 use crate::isa::VectorIsa;
 use crate::iter::Iterated;
 use crate::model::PixelModel;
@@ -157,13 +158,7 @@ impl Fbi {
         // a triangle may wait for the calling thread's core and start only once the
         // triangle is done.
         self.helpers = (threads > 1)
-            .then(|| {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(threads - 1)
-                    .thread_name(|i| format!("voodoo-render-{i}"))
-                    .build()
-                    .ok()
-            })
+            .then(|| Helpers::new(threads - 1))
             .flatten()
             .map(std::sync::Arc::new);
         self.threads = if self.helpers.is_some() { threads } else { 1 };
@@ -232,6 +227,11 @@ impl Fbi {
             && box_pixels(&params) >= MIN_THREADED_PIXELS as u64;
         // Short spans go into chunks packed from several spans (not with the per-triangle
         // stipple copy, which is stepped span by span).
+        // The helpers spin from here until the bands are queued ([`crate::helpers`]).
+        let woken = self.helpers.clone().filter(|_| threaded);
+        if let Some(h) = &woken {
+            h.wake();
+        }
         let mut pack = (SPANS && copy.is_none()).then(|| {
             let mut p = self.pack.take().unwrap_or_else(|| Box::new(Pack::new()));
             p.start(st, &self.params);
@@ -284,6 +284,9 @@ impl Fbi {
             && consts
                 .as_ref()
                 .is_some_and(|c| self.shade_rows_threaded::<M, T>(st, &rows, a, c, tex));
+        if let Some(h) = &woken {
+            h.release();
+        }
         if threaded && !banded {
             for row in &rows {
                 self.shade_or_pack::<M, T>(
@@ -518,7 +521,7 @@ impl Fbi {
             return false;
         }
         let pieces = row_pieces(rows, row_pixels);
-        let bands = band_rows(&pieces, row_pixels);
+        let (order, bands) = band_rows(&pieces, row_pixels);
         if bands.len() < 2 {
             return false;
         }
@@ -550,10 +553,12 @@ impl Fbi {
         };
         let colour_bands = cut_bands(&bands, colour_words, colour.start, Some(st.dest));
         let aux_bands = cut_bands(&bands, aux_words, aux.start, st.aux);
+        // The pieces band after band, so that each band's are one slice of them.
+        let in_bands: Vec<Piece> = order.iter().map(|&i| pieces[i]).collect();
         let parts = bands.iter().zip(colour_bands).zip(aux_bands);
-        let jobs: Vec<BandJob<'_>> = parts
+        let jobs: Vec<BandJob<'_, '_>> = parts
             .map(|((band, colour), aux)| BandJob {
-                rows: band.rows.iter().map(|&i| pieces[i]).collect(),
+                rows: &in_bands[band.rows.clone()],
                 colour,
                 aux,
             })
@@ -601,7 +606,8 @@ impl Fbi {
         };
         let (here, pool) = counters.split_first_mut().expect("one counter per thread");
         let finished = AtomicUsize::new(0);
-        helpers.in_place_scope(|scope| {
+        helpers.release();
+        helpers.pool().in_place_scope(|scope| {
             for counter in pool {
                 let source = tex.band();
                 let (shade_queued, finished) = (&shade_queued, &finished);
@@ -713,8 +719,9 @@ fn row_pieces(rows: &[Row], row_pixels: i64) -> Vec<Piece> {
 /// Row pieces of a triangle's walk that one render thread shades, in the walk's order.
 #[derive(Clone, Debug, PartialEq, Eq)]
 struct Band {
-    /// The pieces, as indices of [`row_pieces`]' list (in the walk's order), in order.
-    rows: Vec<usize>,
+    /// The pieces, as a range of the order [`band_rows`] returns (indices of
+    /// [`row_pieces`]' list, ascending within each band: the walk's order).
+    rows: Range<usize>,
     /// Offsets from a buffer's base of the words its pieces may touch (`None`: none).
     words: Option<Range<i64>>,
 }
@@ -735,51 +742,54 @@ fn row_words(row: &Row, row_pixels: i64) -> Option<Range<i64>> {
 /// pieces with words sorted by their first word, each band at least [`BAND_ROWS`] of them
 /// (the last may hold fewer), ending only where the next piece's words start at or past
 /// the end of every word before; the pieces with no words in bands of their own, first.
-fn band_rows(pieces: &[Piece], row_pixels: i64) -> Vec<Band> {
+/// Returns the pieces' indices band after band, and the bands as ranges of them: one
+/// list for the whole walk rather than one per band (a large triangle has hundreds).
+fn band_rows(pieces: &[Piece], row_pixels: i64) -> (Vec<usize>, Vec<Band>) {
     let words: Vec<Option<Range<i64>>> = pieces
         .iter()
         .map(|p| row_words(&p.row, row_pixels))
         .collect();
-    let (mut placed, none): (Vec<usize>, Vec<usize>) =
-        (0..pieces.len()).partition(|&i| words[i].is_some());
-    let mut bands: Vec<Band> = none
-        .chunks(BAND_ROWS)
-        .map(|c| Band {
-            rows: c.to_vec(),
+    let mut order: Vec<usize> = (0..pieces.len()).collect();
+    // The pieces with no words first (a stable sort keeps them in the walk's order),
+    // then those with words by their first word.
+    order.sort_by_key(|&i| words[i].as_ref().map(|w| w.start));
+    let none = order.iter().take_while(|&&i| words[i].is_none()).count();
+    let mut bands: Vec<Band> = (0..none)
+        .step_by(BAND_ROWS)
+        .map(|at| Band {
+            rows: at..(at + BAND_ROWS).min(none),
             words: None,
         })
         .collect();
-    let at = |i: usize| words[i].clone().unwrap_or_default();
-    placed.sort_by_key(|&i| at(i).start);
     let mut band: Option<Band> = None;
-    for i in placed {
-        let w = at(i);
+    for (at, &i) in order.iter().enumerate().skip(none) {
+        let w = words[i].clone().unwrap_or_default();
         match &mut band {
             Some(b) => {
                 let hull = b.words.clone().unwrap_or_default();
                 if b.rows.len() >= BAND_ROWS && w.start >= hull.end {
                     bands.extend(band.replace(Band {
-                        rows: vec![i],
+                        rows: at..at + 1,
                         words: Some(w),
                     }));
                 } else {
-                    b.rows.push(i);
+                    b.rows.end = at + 1;
                     b.words = Some(hull.start..hull.end.max(w.end));
                 }
             }
             None => {
                 band = Some(Band {
-                    rows: vec![i],
+                    rows: at..at + 1,
                     words: Some(w),
                 })
             }
         }
     }
     bands.extend(band);
-    for b in &mut bands {
-        b.rows.sort_unstable();
+    for b in &bands {
+        order[b.rows.clone()].sort_unstable();
     }
-    bands
+    (order, bands)
 }
 
 /// The most render threads [`Fbi::set_threads`] takes.
@@ -934,8 +944,8 @@ struct BandWords<'m> {
 }
 
 /// A band's row pieces with the words they touch.
-struct BandJob<'m> {
-    rows: Vec<Piece>,
+struct BandJob<'p, 'm> {
+    rows: &'p [Piece],
     colour: BandWords<'m>,
     aux: BandWords<'m>,
 }
@@ -945,7 +955,7 @@ struct BandJob<'m> {
 fn shade_band<M: PixelModel, T: TexelSource>(
     shader: &mut Shader<'_>,
     st: &DrawState,
-    BandJob { rows, colour, aux }: BandJob<'_>,
+    BandJob { rows, colour, aux }: BandJob<'_, '_>,
     ((ax, ay), row_pixels): ((i32, i32), i64),
     consts: &TriangleConsts,
     tex: &mut T,
@@ -956,7 +966,7 @@ fn shade_band<M: PixelModel, T: TexelSource>(
         colour: colour.words,
         aux: aux.words,
     };
-    for Piece { row, row_start } in rows {
+    for &Piece { row, row_start } in rows {
         let dy = row.y - ay;
         // Rotate-mode stipple steps once for every pixel of the row before the piece.
         let mut stipple = st.stipple.rotate_left((row.start - row_start) as u32);
@@ -1047,18 +1057,22 @@ mod tests {
                 assert_eq!(x, row.stop, "{p:?}");
             }
             assert_eq!(at, pieces.len(), "{p:?}");
-            let bands = band_rows(&pieces, row_pixels);
-            let mut seen: Vec<usize> = bands.iter().flat_map(|b| b.rows.clone()).collect();
+            let (order, bands) = band_rows(&pieces, row_pixels);
+            let mut seen: Vec<usize> = bands
+                .iter()
+                .flat_map(|b| order[b.rows.clone()].iter().copied())
+                .collect();
             seen.sort_unstable();
             assert_eq!(seen, (0..pieces.len()).collect::<Vec<_>>(), "{p:?}");
             let mut last_end = i64::MIN;
             let placed: Vec<&Band> = bands.iter().filter(|b| b.words.is_some()).collect();
             for (i, band) in placed.iter().enumerate() {
-                assert!(band.rows.windows(2).all(|w| w[0] < w[1]), "{p:?}");
+                let rows = &order[band.rows.clone()];
+                assert!(rows.windows(2).all(|w| w[0] < w[1]), "{p:?}");
                 let hull = band.words.clone().unwrap_or_default();
                 assert!(hull.start >= last_end, "{p:?}: bands out of memory order");
                 last_end = hull.end;
-                for &r in &band.rows {
+                for &r in rows {
                     let w = row_words(&pieces[r].row, row_pixels).unwrap_or_default();
                     assert!(hull.start <= w.start && w.end <= hull.end, "{p:?}");
                 }
