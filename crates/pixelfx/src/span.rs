@@ -60,6 +60,7 @@ impl Words {
 
     /// The words of `n` lanes from column `x0` of frame-buffer row `y` in the buffer at
     /// word `base`, as [`crate::fb::FrameBuffer::index`] finds them one at a time.
+    #[inline(always)]
     pub(crate) fn of(fbi: &Fbi, base: usize, x0: i32, n: usize, y: i32) -> Self {
         if y < 0 {
             return Self::NONE;
@@ -72,6 +73,7 @@ impl Words {
     /// The words of `n` lanes from column `x0` of a row whose column 0 lies at `row_at`
     /// of a band's slice of `len` words (`None`: a row with no words; the threaded walk,
     /// whose bands hold every word their rows touch within memory).
+    #[inline(always)]
     pub(crate) fn in_band(row_at: Option<i64>, len: usize, x0: i32, n: usize) -> Self {
         row_at.map_or(Self::NONE, |at| {
             Self::from_start(at + x0 as i64, len as i64, x0, n)
@@ -80,6 +82,7 @@ impl Words {
 
     /// Lane `i` at word `start + i`, existing where the column is not negative and the
     /// word is below `len`.
+    #[inline(always)]
     fn from_start(start: i64, len: i64, x0: i32, n: usize) -> Self {
         let lo = (-(x0 as i64)).clamp(0, n as i64);
         let hi = (len - start).clamp(lo, n as i64);
@@ -95,6 +98,7 @@ impl Words {
 
     /// Whether a write through `self` to one lane can land on a word that `other` reads
     /// for a different lane.
+    #[inline(always)]
     pub(crate) fn crosses(&self, other: &Words) -> bool {
         if self.lo >= self.hi || other.lo >= other.hi {
             return false;
