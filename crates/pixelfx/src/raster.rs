@@ -221,17 +221,20 @@ impl Fbi {
         // ([`TexelSource::share`], asked once the triangle is known to be large).
         // A triangle whose bounding box holds fewer pixels than the bands take is drawn
         // on this thread without collecting its rows first.
-        let threaded = SPANS
-            && self.threads > 1
-            && copy.is_none()
-            && box_pixels(&params) >= MIN_THREADED_PIXELS as u64;
-        // The helpers spin from here until the bands are queued ([`crate::helpers`]). (The
-        // pool's handle is cloned only for such a triangle: a clone for every triangle
-        // cost small triangles 2 % on two threads.)
-        let woken = self.helpers.as_ref().filter(|_| threaded).cloned();
+        // The helpers (there are some only with more than one render thread) spin from
+        // here until the bands are queued ([`crate::helpers`]). (The pool's handle is
+        // cloned only for such a triangle: a clone for every triangle cost small
+        // triangles 2 % on two threads.)
+        let woken = self
+            .helpers
+            .as_ref()
+            .filter(|_| SPANS && copy.is_none())
+            .filter(|_| box_pixels(&params) >= MIN_THREADED_PIXELS as u64)
+            .cloned();
         if let Some(h) = &woken {
             h.wake();
         }
+        let threaded = woken.is_some();
         // Short spans go into chunks packed from several spans (not with the per-triangle
         // stipple copy, which is stepped span by span).
         let mut pack = (SPANS && copy.is_none()).then(|| {
@@ -282,10 +285,11 @@ impl Fbi {
                 );
             }
         }
-        let banded = threaded
-            && consts
-                .as_ref()
-                .is_some_and(|c| self.shade_rows_threaded::<M, T>(st, &rows, a, c, tex));
+        let banded = match (&woken, &consts) {
+            (Some(h), Some(c)) => self.shade_rows_threaded::<M, T>(st, &rows, a, c, tex, h),
+            _ => false,
+        };
+        // Banded, the helpers were released as the bands were queued; not, they are now.
         if let Some(h) = &woken {
             h.release();
         }
@@ -510,12 +514,10 @@ impl Fbi {
         a: (i32, i32),
         consts: &TriangleConsts,
         tex: &mut T,
+        helpers: &Helpers,
     ) -> bool {
         let row_pixels = i64::from(self.fb.layout.row_pixels);
         let pixels: usize = rows.iter().map(|r| (r.stop - r.start) as usize).sum();
-        let Some(helpers) = self.helpers.clone() else {
-            return false;
-        };
         if row_pixels == 0 || pixels < MIN_THREADED_PIXELS {
             return false;
         }
