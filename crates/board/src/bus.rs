@@ -92,6 +92,25 @@ static ROUTES: [u8; 256] = {
     routes
 };
 
+/// Whether a write to FBI register `offset` (normal map) changes what the render thread
+/// holds or adds to ([`crate::deferred`]): the frame buffer's layout and buffer indices
+/// (init registers, `videoDimensions`), the counters (`nopCMD`), the fog table. The
+/// commands settle on their own.
+#[inline]
+fn settles_render(offset: u32) -> bool {
+    matches!(
+        offset & 0x3fc,
+        addr::NOP_CMD | addr::FOG_TABLE
+            ..=addr::FOG_TABLE_LAST
+                | addr::FBI_INIT0
+                | addr::FBI_INIT1
+                | addr::FBI_INIT2
+                | addr::FBI_INIT3
+                | addr::FBI_INIT4
+                | addr::VIDEO_DIMENSIONS
+    )
+}
+
 impl Board {
     /// The normal-map register offset and chip mask of a register-region address.
     fn decode_register(&self, addr: u32) -> (u32, u32) {
@@ -138,11 +157,15 @@ impl Board {
         if chips & 1 == 0 || route & Route::FBI == 0 {
             return;
         }
+        if self.render_lent() && settles_render(offset) {
+            self.settle();
+        }
         match self.fbi.write_reg::<M>(offset, value) {
             Command::None => {}
             Command::Triangle => self.triangle::<M>(),
             Command::Fastfill => self.fastfill::<M>(),
             Command::Swap => {
+                self.settle();
                 self.fbi.swap();
                 if self.timing_on {
                     self.timing.swap(value);
@@ -195,7 +218,6 @@ impl Board {
         let init3 = sst1_regs::FbiInit3(self.fbi.reg(addr::FBI_INIT3));
         let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
         let profile = M::pixel(&self.fbi.profile());
-        let before = self.fbi.stats;
         // ParamOrigin::RoundedVertex (86Box): the correction lasts this triangle only.
         let saved = (cp.param_adjust() && !profile.param_origin.writes_back())
             .then(|| box86::StartRegisters::save(&self.fbi, &self.tmus));
@@ -210,26 +232,51 @@ impl Board {
                 }
             }
         }
-        if texturing {
-            for t in &mut self.tmus {
-                t.begin_triangle::<M>();
+        let (pixels, spans) = if !texturing && self.fbi.deferrable::<M>() && self.defer() {
+            match self.fbi.triangle_job::<M>() {
+                Some(job) => {
+                    let counts = if self.timing_on {
+                        self.fbi.walk_counts::<M>()
+                    } else {
+                        (0, 0)
+                    };
+                    let render = self.render.as_mut().expect("a render thread to defer to");
+                    if let Err(e) = render.push(&mut self.fbi, job) {
+                        self.render = None;
+                        panic!("{e}");
+                    }
+                    counts
+                }
+                None => (0, 0),
             }
-            self.fbi
-                .draw_triangle::<M, _>(&mut Chain::<M>::new(&mut self.tmus));
         } else {
-            self.fbi.draw_triangle::<M, _>(&mut NoTexture);
-        }
+            self.settle();
+            let before = self.fbi.stats;
+            if texturing {
+                for t in &mut self.tmus {
+                    t.begin_triangle::<M>();
+                }
+                self.fbi
+                    .draw_triangle::<M, _>(&mut Chain::<M>::new(&mut self.tmus));
+            } else {
+                self.fbi.draw_triangle::<M, _>(&mut NoTexture);
+            }
+            let after = self.fbi.stats;
+            (
+                after.pixels_in.wrapping_sub(before.pixels_in),
+                after.spans.wrapping_sub(before.spans),
+            )
+        };
         if let Some(saved) = saved {
             saved.restore(&mut self.fbi, &mut self.tmus);
         }
         if !self.timing_on {
             return;
         }
-        let after = self.fbi.stats;
         let am = sst1_regs::AlphaMode(self.fbi.reg(addr::ALPHA_MODE));
         self.timing.triangle(TriangleWork {
-            pixels: after.pixels_in.wrapping_sub(before.pixels_in),
-            spans: after.spans.wrapping_sub(before.spans),
+            pixels,
+            spans,
             subpixel: cp.param_adjust(),
             textured: texturing,
             read_modify_write: self.fbi.fbz_mode().enable_depthbuffer() || am.alpha_blend_enable(),
@@ -240,6 +287,7 @@ impl Board {
     /// [`Board::triangle`]).
     #[inline(never)]
     fn fastfill<M: ChipModel>(&mut self) {
+        self.settle();
         let mode = self.fbi.fbz_mode();
         let (left, right, low, high) = self.fbi.clip_rect();
         let rows = (high - low).max(0) as u64;
@@ -275,6 +323,7 @@ impl Board {
         if bus_addr < LFB_BASE {
             self.write_register::<M>(bus_addr, value);
         } else if bus_addr < TEX_BASE {
+            self.settle();
             self.fbi.lfb_write::<M>(bus_addr - LFB_BASE, value);
         } else {
             self.write_texture(bus_addr, value);
@@ -302,6 +351,7 @@ impl RegisterBus for Board {
     }
 
     fn read32(&mut self, bus_addr: u32) -> u32 {
+        self.settle();
         if self.timing_on {
             self.timing.read();
         }

@@ -13,6 +13,7 @@
 
 mod box86;
 mod bus;
+mod deferred;
 mod diagnostics;
 pub mod method;
 pub mod model;
@@ -26,6 +27,7 @@ mod write16;
 use serde::{Deserialize, Serialize};
 
 pub use bus::aperture_offset;
+pub use deferred::Deferred;
 pub use diagnostics::{Diagnostic, Diagnostics};
 pub use method::Method;
 pub use model::Model;
@@ -123,6 +125,12 @@ pub struct Board {
     dac: video::Dac,
     /// Whether the timing model runs ([`Board::set_timing`]).
     timing_on: bool,
+    /// The render thread small untextured triangles are shaded on during the writes of
+    /// a [`Deferred`] run, with more than one render thread (started at the first).
+    render: Option<pixelfx::RenderThread>,
+    /// Whether a triangle command may go to the render thread: only inside the writes of
+    /// a [`Deferred`] run.
+    deferring: bool,
 }
 
 impl Board {
@@ -143,6 +151,8 @@ impl Board {
             timing: Timing::default(),
             dac: video::Dac::default(),
             timing_on: true,
+            render: None,
+            deferring: false,
         }
     }
 

@@ -34,6 +34,9 @@ struct Buffer {
 struct Outcome {
     buffers: Vec<Buffer>,
     stats: Stats,
+    /// The timing model's record (`Debug` of the total and of every frame): a triangle
+    /// shaded on the render thread is timed on the calling thread from its walk's counts.
+    timing: String,
 }
 
 /// How a replay draws: the reference path, or the fast path on this many render threads
@@ -98,9 +101,11 @@ fn replay(path: &Path, profile: AccuracyProfile, run: Run) -> Outcome {
             data: board.dump_buffer(kind),
         });
     }
+    let timing = board.timing();
     Outcome {
         buffers,
         stats: board.stats(),
+        timing: format!("{:?} {:?}", timing.total, timing.frames),
     }
 }
 
@@ -125,6 +130,12 @@ fn differences(path: &Path, reference: &Outcome, fast: &Outcome) -> Vec<String> 
         problems.push(format!(
             "{name}: counters differ\n  reference {:?}\n  fast      {:?}",
             reference.stats, fast.stats
+        ));
+    }
+    if reference.timing != fast.timing {
+        problems.push(format!(
+            "{name}: modelled time differs\n  reference {}\n  fast      {}",
+            reference.timing, fast.timing
         ));
     }
     if reference.buffers.len() != fast.buffers.len() {
@@ -258,6 +269,29 @@ fn render_threads_take_large_untextured_triangles() {
     let counts = board.path_counts();
     assert!(counts.in_bands > 50_000, "{counts:?}");
     assert_eq!(counts.aliased_layout + counts.reference, 0, "{counts:?}");
+}
+
+/// Small untextured triangles are shaded on the render thread behind the writes
+/// (`pixelfx::deferred`) on the traces above, so that [`check_all`]'s two- and
+/// four-thread runs prove them: most of the small-triangle scene's pixels, and some of
+/// the random-state scene's (where fills, LFB accesses, table writes and textured
+/// triangles call them back between).
+#[test]
+fn render_thread_takes_small_untextured_triangles() {
+    for (name, least) in [("small_tris", 15_000), ("random_states", 300)] {
+        let path = traces("generated", |n| n == name);
+        let trace = load_trace(&path[0]).unwrap_or_else(|e| panic!("{e}"));
+        let mut board = Board::new(trace.board_config());
+        board.set_threads(2);
+        execute(&trace.ops, &mut board, |_| {});
+        let counts = board.path_counts();
+        assert!(counts.behind_writes > least, "{name}: {counts:?}");
+        // One thread never defers.
+        let mut board = Board::new(trace.board_config());
+        board.set_threads(1);
+        execute(&trace.ops, &mut board, |_| {});
+        assert_eq!(board.path_counts().behind_writes, 0, "{name}");
+    }
 }
 
 #[test]

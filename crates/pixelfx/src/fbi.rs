@@ -91,6 +91,9 @@ pub struct PathCounts {
     pub short_rows: u64,
     /// Pixel by pixel because the reference path was forced ([`Fbi::set_generic_path`]).
     pub reference: u64,
+    /// Of all the above, of small untextured triangles shaded on the render thread while
+    /// the calling thread went on with the writes after them ([`crate::deferred`]).
+    pub behind_writes: u64,
 }
 
 impl PathCounts {
@@ -102,6 +105,7 @@ impl PathCounts {
         self.aliased_layout += other.aliased_layout;
         self.short_rows += other.short_rows;
         self.reference += other.reference;
+        self.behind_writes += other.behind_writes;
     }
 }
 

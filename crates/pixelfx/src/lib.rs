@@ -8,6 +8,7 @@ pub mod alpha_test;
 pub mod blend;
 pub mod box86;
 pub mod color_path;
+pub mod deferred;
 pub mod depth;
 pub mod fastfill;
 pub mod fb;
@@ -29,6 +30,7 @@ pub mod stats;
 pub mod stipple;
 pub mod watch;
 
+pub use deferred::{RenderThread, RenderThreadFailed, TriangleJob};
 pub use fbi::{Command, Fbi, PathCounts};
 pub use isa::VectorIsa;
 pub use model::{PixelModel, RuntimeProfile};

@@ -39,6 +39,8 @@ pub struct DrawState {
     pub stipple: u32,
     /// Clip rectangle `[left, right) x [low_y, high_y)` in screen coordinates.
     pub clip: (i32, i32, i32, i32),
+    /// The Y origin subtraction value (`fbiInit3[31:22]`, [`Fbi::y_origin`]).
+    pub y_origin: i32,
     /// Word index of the colour buffer drawn into.
     pub dest: usize,
     /// Word index of the aux buffer, if the memory layout has one.
@@ -91,11 +93,25 @@ impl DrawState {
             fog_color: Rgba::from_argb(fbi.reg(addr::FOG_COLOR)),
             stipple: fbi.reg(addr::STIPPLE),
             clip: (left, right, low, high),
+            y_origin: fbi.y_origin(),
             dest,
             aux: fbi.fb.aux_base(),
             dither,
             dither_matrix,
             fetch_texel,
+        }
+    }
+}
+
+impl DrawState {
+    /// Screen row of raster row `y`, after the Y origin flip when `flip` is set (as
+    /// [`Fbi::screen_y`] with the registers captured).
+    #[inline]
+    pub fn screen_y(&self, y: i32, flip: bool) -> i32 {
+        if flip {
+            (self.y_origin - y) & 0x3ff
+        } else {
+            y
         }
     }
 }

@@ -135,6 +135,17 @@ impl Fbi {
         }
     }
 
+    /// The pixels and spans the walk of the triangle in the parameter registers counts
+    /// (`fbiPixelsIn` and [`Stats::spans`]: every span of the edge walk, clipped or not),
+    /// without shading it: what [`Fbi::draw_triangle`] adds to them when `fbzMode`
+    /// selects a colour buffer.
+    pub fn walk_counts<M: PixelModel>(&self) -> (u64, u64) {
+        let profile = M::pixel(&self.profile());
+        setup::spans(&self.params, profile.edge_rounding).fold((0, 0), |(pixels, spans), s| {
+            (pixels + (s.stop - s.start) as u64, spans + 1)
+        })
+    }
+
     /// Force the reference path (every mode register read at run time for every pixel)
     /// instead of the span kernels, and fills pixel by pixel instead of by rows. Both
     /// give identical pixels and counters; the switch
@@ -193,7 +204,7 @@ impl Fbi {
     /// ([`Fbi::set_threads`]), the rows of a large triangle are shaded in bands
     /// on several threads ([`Fbi::shade_rows_threaded`]).
     #[inline(always)]
-    fn walk<M: PixelModel, T: TexelSource, const SPANS: bool>(
+    pub(crate) fn walk<M: PixelModel, T: TexelSource, const SPANS: bool>(
         &mut self,
         st: &DrawState,
         tex: &mut T,
@@ -248,7 +259,7 @@ impl Fbi {
             // Every pixel the walker visits counts as "in" (spec 5.31), clipped or not.
             self.stats.pixels_in += (stop - start) as u64;
             self.stats.spans += 1;
-            let scry = self.screen_y(span.y, flip);
+            let scry = st.screen_y(span.y, flip);
             // The watch forces the reference path, so only it looks for the watched pixel.
             if !SPANS {
                 self.watch_clip(st, scry, start, stop);
@@ -807,12 +818,12 @@ const END_SPIN: Duration = Duration::from_micros(200);
 const BAND_ROWS: usize = 4;
 
 /// The fewest pixels a triangle must have for its rows to go to the render threads.
-const MIN_THREADED_PIXELS: usize = 4096;
+pub(crate) const MIN_THREADED_PIXELS: usize = 4096;
 
 /// At least as many pixels as the triangle of `p` covers: its vertices' bounding box in
 /// whole pixels, with a pixel's margin on every side (each walk's spans lie between its
 /// vertices' coordinates, rounded to pixel boundaries).
-fn box_pixels(p: &TriangleParams) -> u64 {
+pub(crate) fn box_pixels(p: &TriangleParams) -> u64 {
     let span = |a: i16, b: i16, c: i16| {
         let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
         ((i32::from(hi) - i32::from(lo)) >> 4) as u64 + 3

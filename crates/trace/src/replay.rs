@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::{mpsc, Arc};
 
-use sst1_board::{vote, Board, BoardConfig, BufferKind, Reference};
+use sst1_board::{vote, Board, BoardConfig, BufferKind, Deferred, Reference};
 use sst1_regs::{addr, RegisterBus};
 
 use crate::output::{DumpDir, OutputError};
@@ -191,6 +191,18 @@ pub enum ReplayError {
     Sink(String),
 }
 
+/// [`step`] in a run of writes that may queue small triangles for a render thread
+/// ([`Board::deferred`]): a write is queued behind them, anything else waits for them.
+fn step_in(run: &mut Deferred<'_>, op: &TraceOp) -> Option<Dump> {
+    match op {
+        TraceOp::Write { addr, value } => {
+            run.write32(*addr, *value);
+            None
+        }
+        _ => step(run.board(), op),
+    }
+}
+
 /// Runs one op on `board`; a `dump` op returns the buffer it saves.
 #[inline]
 fn step(board: &mut Board, op: &TraceOp) -> Option<Dump> {
@@ -224,8 +236,9 @@ fn step(board: &mut Board, op: &TraceOp) -> Option<Dump> {
 /// [`execute_stream`] hands each to a sink instead.
 pub fn execute(ops: &[TraceOp], board: &mut Board, mut progress: impl FnMut(usize)) -> Vec<Dump> {
     let mut dumps = Vec::new();
+    let mut run = board.deferred();
     for (index, op) in ops.iter().enumerate() {
-        dumps.extend(step(board, op));
+        dumps.extend(step_in(&mut run, op));
         if (index + 1) % PROGRESS_STEP == 0 {
             progress(index + 1);
         }
@@ -245,8 +258,9 @@ pub fn execute_stream(
     mut sink: impl FnMut(Dump) -> Result<(), ReplayError>,
 ) -> Result<usize, ReplayError> {
     let mut done = 0;
+    let mut run = board.deferred();
     for op in ops {
-        if let Some(dump) = step(board, &op?) {
+        if let Some(dump) = step_in(&mut run, &op?) {
             sink(dump)?;
         }
         done += 1;
@@ -279,6 +293,7 @@ pub fn execute_trace_stream(
     let mut done = 0;
     let mut next_progress = PROGRESS_STEP;
     let mut writes = [(0u32, 0u32); WRITE_RUN];
+    let mut run = board.deferred();
     while done < limit {
         let writes_end = limit.min(next_progress);
         while done < writes_end {
@@ -287,14 +302,14 @@ pub fn execute_trace_stream(
             if n == 0 {
                 break;
             }
-            board.write32_all(&writes[..n]);
+            run.write32_all(&writes[..n]);
             done += n;
         }
         if done < writes_end {
             let Some(op) = stream.next() else {
                 break;
             };
-            if let Some(dump) = step(board, &op?) {
+            if let Some(dump) = step_in(&mut run, &op?) {
                 sink(dump)?;
             }
             done += 1;

@@ -832,6 +832,7 @@ impl Stats {
                 "aliased_layout": self.2.aliased_layout,
                 "short_rows": self.2.short_rows,
                 "reference": self.2.reference,
+                "behind_writes": self.2.behind_writes,
             },
         })
     }
@@ -951,7 +952,7 @@ fn replay(
             println!("swaps        {}", c.swaps);
             let paths = board.path_counts();
             println!(
-                "shaded by    span kernels {} ({} on render threads, {} in chunks packed from short rows; compiled for {}), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {})",
+                "shaded by    span kernels {} ({} on render threads, {} in chunks packed from short rows; compiled for {}), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {}); of all, {} of small untextured triangles on the render thread behind the writes",
                 paths.span_kernels,
                 paths.in_bands,
                 paths.packed,
@@ -959,7 +960,8 @@ fn replay(
                 paths.short_rows + paths.aliased_layout + paths.reference,
                 paths.short_rows,
                 paths.aliased_layout,
-                paths.reference
+                paths.reference,
+                paths.behind_writes
             );
             for (what, n) in board.diagnostics().iter() {
                 println!("ignored      {n} x {what:?}");

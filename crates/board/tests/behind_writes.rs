@@ -1,0 +1,217 @@
+//! Small untextured triangles shaded on the render thread behind the writes
+//! (`pixelfx::deferred`, `Board::deferred`) against the same writes on one thread, where
+//! the order is most likely to break: every kind of access that reads or writes what the
+//! render thread holds comes right after blended triangles it is still shading (an LFB
+//! write under the next triangles and an LFB read of the last one, a FASTFILL, a swap, a
+//! fog-table write with fog on, `nopCMD` clearing the counters, a counter read, a new buffer layout, a
+//! textured triangle and a large one on the bands). Every frame-buffer word, every value
+//! read, the counters and the modelled time must be identical, and the render thread must
+//! have taken most of the triangles.
+
+use sst1_board::{Board, BoardConfig};
+use sst1_regs::{addr, FbiInit2, RegisterBus};
+
+const LFB: u32 = 0x40_0000;
+
+/// xorshift64* (Vigna), seeded.
+struct Rng(u64);
+
+impl Rng {
+    fn new(seed: u64) -> Self {
+        Self(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1)
+    }
+
+    fn u32(&mut self) -> u32 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 32) as u32
+    }
+
+    fn below(&mut self, n: u32) -> u32 {
+        self.u32() % n
+    }
+}
+
+/// One access of the stream: a write, or a read whose value is kept.
+#[derive(Clone, Copy)]
+enum Access {
+    Write(u32, u32),
+    Read(u32),
+}
+
+/// A triangle with its three vertices `size` pixels around `(x, y)` (12.4), random
+/// Gouraud colour, Z and alpha, drawn with `command`.
+fn triangle(rng: &mut Rng, out: &mut Vec<Access>, (x, y): (u32, u32), size: u32, command: u32) {
+    let regs = [addr::VERTEX_AX, addr::VERTEX_BX, addr::VERTEX_CX];
+    for reg in regs {
+        out.push(Access::Write(
+            reg,
+            (x + rng.below(size)) * 16 + rng.below(16),
+        ));
+        out.push(Access::Write(
+            reg + 4,
+            (y + rng.below(size)) * 16 + rng.below(16),
+        ));
+    }
+    for reg in [
+        addr::START_R,
+        addr::START_G,
+        addr::START_B,
+        addr::START_A,
+        addr::START_Z,
+    ] {
+        out.push(Access::Write(reg, rng.u32() & 0x00ff_ffff));
+        out.push(Access::Write(reg + 0x20, rng.u32() & 0x1fff));
+        out.push(Access::Write(reg + 0x40, rng.u32() & 0x1fff));
+    }
+    out.push(Access::Write(command, rng.u32() & 1 << 31));
+}
+
+/// The stream of `seed`: rounds of small blended triangles, each round ended by one
+/// access of every kind in turn that the render thread must be called back for.
+fn stream(seed: u64) -> Vec<Access> {
+    let mut rng = Rng::new(seed);
+    let mut out: Vec<Access> = sst1_board::presets::GLIDE_640X480
+        .iter()
+        .map(|&(a, v)| Access::Write(a, v))
+        .collect();
+    // LFB writes and reads of the back buffer, RGB565.
+    out.push(Access::Write(addr::LFB_MODE, 1 << 4 | 1 << 6));
+    out.push(Access::Write(addr::CLIP_LEFT_RIGHT, 640));
+    out.push(Access::Write(addr::CLIP_LOW_Y_HIGH_Y, 480));
+    for round in 0..60u32 {
+        // Back buffer, RGB and depth writes, a random depth function, 4x4 dither; fog
+        // on in some rounds; blending source alpha over the destination.
+        let fbz = 1 << 14 | 1 << 9 | 1 << 10 | 1 << 4 | (rng.below(8) << 5) | 1 << 8 | 1;
+        out.push(Access::Write(addr::FBZ_MODE, fbz));
+        out.push(Access::Write(addr::ALPHA_MODE, 1 << 4 | 1 << 8 | 5 << 12));
+        out.push(Access::Write(addr::FBZ_COLOR_PATH, 0));
+        out.push(Access::Write(addr::FOG_MODE, rng.below(2)));
+        out.push(Access::Write(addr::FOG_COLOR, rng.u32()));
+        // All triangles of a round within 40 pixels of one place, so that they
+        // overlap each other and what the round's hazard touches.
+        let at = (20 + rng.below(560), 20 + rng.below(400));
+        for _ in 0..12 {
+            let corner = (at.0 + rng.below(24), at.1 + rng.below(24));
+            triangle(&mut rng, &mut out, corner, 10, addr::TRIANGLE_CMD);
+        }
+        let (x, y) = (at.0 + 12, at.1 + 12);
+        let lfb = LFB + (y << 11) + (x << 1);
+        match round % 9 {
+            0 => {
+                // An LFB write under the next triangles.
+                out.push(Access::Write(lfb, rng.u32()));
+                out.push(Access::Write(lfb + 2048, rng.u32()));
+            }
+            1 => out.push(Access::Read(lfb)),
+            2 => {
+                out.push(Access::Write(addr::COLOR1, rng.u32()));
+                out.push(Access::Write(
+                    addr::CLIP_LEFT_RIGHT,
+                    x << 16 | (x + 1 + rng.below(8)),
+                ));
+                out.push(Access::Write(
+                    addr::CLIP_LOW_Y_HIGH_Y,
+                    y << 16 | (y + 1 + rng.below(8)),
+                ));
+                out.push(Access::Write(addr::FASTFILL_CMD, 0));
+                out.push(Access::Write(addr::CLIP_LEFT_RIGHT, 640));
+                out.push(Access::Write(addr::CLIP_LOW_Y_HIGH_Y, 480));
+            }
+            3 => out.push(Access::Write(addr::SWAPBUFFER_CMD, 0)),
+            4 => {
+                let entry = rng.below(32) * 4;
+                out.push(Access::Write(addr::FOG_TABLE + entry, rng.u32()));
+            }
+            5 => {
+                // The counters cleared after triangles still to shade, then read.
+                out.push(Access::Read(addr::FBI_PIXELS_IN));
+                triangle(&mut rng, &mut out, at, 10, addr::TRIANGLE_CMD);
+                out.push(Access::Write(addr::NOP_CMD, 1));
+                triangle(&mut rng, &mut out, at, 10, addr::TRIANGLE_CMD);
+                out.push(Access::Read(addr::FBI_PIXELS_OUT));
+            }
+            6 => {
+                // Rows of 256 words (4 tiles across in fbiInit1) with buffers a page
+                // further on, or Glide's layout again.
+                let (init1, pages) = if (round / 9) % 2 == 0 {
+                    (0x0020_0042, 151)
+                } else {
+                    (0x0020_00a2, 150)
+                };
+                let init2 = FbiInit2(0x1874_b040).with_video_buffer_offset(pages);
+                out.push(Access::Write(addr::FBI_INIT1, init1));
+                triangle(&mut rng, &mut out, at, 10, addr::TRIANGLE_CMD);
+                out.push(Access::Write(addr::FBI_INIT2, init2.0));
+            }
+            7 => {
+                // Textured (no texture downloaded: texel 0): the calling thread draws it.
+                out.push(Access::Write(addr::FBZ_COLOR_PATH, 1 << 27 | 1));
+                triangle(&mut rng, &mut out, at, 20, addr::TRIANGLE_CMD);
+                out.push(Access::Write(addr::FBZ_COLOR_PATH, 0));
+            }
+            _ => triangle(
+                &mut rng,
+                &mut out,
+                (at.0 / 2, at.1 / 2),
+                200,
+                addr::TRIANGLE_CMD,
+            ),
+        }
+        // More triangles over what the hazard touched before the round ends.
+        for _ in 0..4 {
+            triangle(&mut rng, &mut out, (x - 6, y - 6), 12, addr::TRIANGLE_CMD);
+        }
+    }
+    out.push(Access::Read(addr::FBI_PIXELS_IN));
+    out
+}
+
+/// What one replay of `stream` left and read, on `threads` render threads: the
+/// frame-buffer words, the values read, the counters, the modelled time and the pixels
+/// shaded behind the writes.
+fn replay(stream: &[Access], threads: usize) -> (Vec<u16>, Vec<u32>, String, u64) {
+    let mut board = Board::new(BoardConfig::default());
+    board.set_threads(threads);
+    board.pci_write(0x40, 3);
+    let mut reads = Vec::new();
+    {
+        let mut run = board.deferred();
+        for &access in stream {
+            match access {
+                Access::Write(a, v) => run.write32(a, v),
+                Access::Read(a) => reads.push(run.board().read32(a)),
+            }
+        }
+    }
+    let timing = board.timing();
+    let record = format!("{:?} {:?} {:?}", board.stats(), timing.total, timing.frames);
+    (
+        board.fbi().fb.ram.clone(),
+        reads,
+        record,
+        board.path_counts().behind_writes,
+    )
+}
+
+#[test]
+fn triangles_behind_the_writes_equal_one_thread() {
+    let mut behind = 0;
+    for seed in 0..4 {
+        let writes = stream(seed);
+        let (ram, reads, record, none) = replay(&writes, 1);
+        assert_eq!(none, 0, "one thread defers nothing");
+        let (ram2, reads2, record2, b) = replay(&writes, 2);
+        assert_eq!(record, record2, "seed {seed}: counters or time");
+        assert_eq!(reads, reads2, "seed {seed}: values read");
+        if let Some(i) = (0..ram.len()).find(|&i| ram[i] != ram2[i]) {
+            panic!(
+                "seed {seed}: word {i:#x} is {:#06x} behind the writes, {:#06x} on one thread",
+                ram2[i], ram[i]
+            );
+        }
+        behind += b;
+    }
+    assert!(behind > 30_000, "{behind} pixels behind the writes");
+}
