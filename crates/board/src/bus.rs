@@ -2,6 +2,7 @@
 //! the LFB and texture regions, and PCI configuration space (spec 6).
 
 use crate::box86;
+use crate::deferred;
 use crate::diagnostics::Diagnostic;
 use crate::model::{with_model, ChipModel};
 use crate::timing::{MemoryFifo, TriangleWork};
@@ -10,6 +11,7 @@ use crate::Board;
 use pixelfx::{Command, NoTexture};
 use sst1_chain::Chain;
 use sst1_regs::{addr, map, RegisterBus};
+use texelfx::Tmu;
 
 /// Start of the linear frame buffer region.
 const LFB_BASE: u32 = 0x40_0000;
@@ -148,10 +150,10 @@ impl Board {
         if route & Route::TREX != 0 {
             // Float S/T/W writes go to the TMUs as they are: the TMU keeps their 32
             // fraction bits (MAME, DOSBox Staging and 86Box all do).
-            for (i, tmu) in self.tmus.iter_mut().enumerate() {
-                if chips & (2 << i) != 0 {
-                    tmu.write_reg(offset, value);
-                }
+            if self.render_lent() {
+                self.lent_tmus(deferred::tmu_register, [chips, offset, value]);
+            } else {
+                deferred::tmu_register(&mut self.tmus, [chips, offset, value]);
             }
         }
         if chips & 1 == 0 || route & Route::FBI == 0 {
@@ -219,38 +221,49 @@ impl Board {
         let texturing = cp.texture_enable() && !init3.disable_texture_mapping();
         let profile = M::pixel(&self.fbi.profile());
         // ParamOrigin::RoundedVertex (86Box): the correction lasts this triangle only.
-        let saved = (cp.param_adjust() && !profile.param_origin.writes_back())
-            .then(|| box86::StartRegisters::save(&self.fbi, &self.tmus));
+        let restores = cp.param_adjust() && !profile.param_origin.writes_back();
+        // A small triangle goes to the render thread (which then holds the TMUs too);
+        // any other waits for what is queued there.
+        let deferring = !restores && self.fbi.deferrable::<M>() && self.defer();
+        if !deferring {
+            self.settle();
+        }
+        let saved = restores.then(|| box86::StartRegisters::save(&self.fbi, &self.tmus));
+        let mut tex_adjust = None;
         if cp.param_adjust() {
             let (dx, dy) = self
                 .fbi
                 .params
                 .subpixel_adjust(profile.subpixel_z, profile.param_origin);
             if texturing {
-                for t in &mut self.tmus {
-                    t.subpixel_adjust(dx, dy);
+                if deferring {
+                    tex_adjust = Some((dx, dy));
+                } else {
+                    for t in &mut self.tmus {
+                        t.subpixel_adjust(dx, dy);
+                    }
                 }
             }
         }
-        let (pixels, spans) = if !texturing && self.fbi.deferrable::<M>() && self.defer() {
-            match self.fbi.triangle_job::<M>() {
+        let (pixels, spans) = if deferring {
+            let draw: pixelfx::DrawJob<Vec<Tmu>> = if texturing {
+                deferred::draw_textured::<M>
+            } else {
+                pixelfx::draw_untextured::<M, Vec<Tmu>>
+            };
+            match self.fbi.triangle_job::<M, _>(draw, tex_adjust) {
                 Some(job) => {
                     let counts = if self.timing_on {
                         self.fbi.walk_counts::<M>()
                     } else {
                         (0, 0)
                     };
-                    let render = self.render.as_mut().expect("a render thread to defer to");
-                    if let Err(e) = render.push(&mut self.fbi, job) {
-                        self.render = None;
-                        panic!("{e}");
-                    }
+                    self.defer_triangle(job);
                     counts
                 }
                 None => (0, 0),
             }
         } else {
-            self.settle();
             let before = self.fbi.stats;
             if texturing {
                 for t in &mut self.tmus {
@@ -305,10 +318,13 @@ impl Board {
 
     fn write_texture(&mut self, bus_addr: u32, value: u32) {
         let rel = bus_addr - TEX_BASE;
-        let tmu = ((rel >> 21) & 3) as usize;
-        match self.tmus.get_mut(tmu) {
-            Some(t) => t.write_texture(rel, value),
-            None => self.diagnostics.note(Diagnostic::MissingTmu),
+        let tmu = (rel >> 21) & 3;
+        if tmu >= self.config.tmus {
+            self.diagnostics.note(Diagnostic::MissingTmu);
+        } else if self.render_lent() {
+            self.lent_tmus(deferred::tmu_texture, [tmu, rel, value]);
+        } else {
+            deferred::tmu_texture(&mut self.tmus, [tmu, rel, value]);
         }
     }
 }

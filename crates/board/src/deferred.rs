@@ -1,13 +1,63 @@
-//! Runs of bus writes whose small untextured triangles are shaded on a render thread
+//! Runs of bus writes whose small triangles are shaded on a render thread
 //! ([`pixelfx::deferred`]) while the writes after them go on.
 //!
 //! [`Board::deferred`] borrows the board for such a run: its writes may leave triangles
 //! queued, and everything else on the board waits for them ([`Deferred::board`] and the
 //! end of the run settle first), so nothing outside the run can see a frame buffer whose
 //! triangles are still being drawn. Inside the writes the board settles before whatever
-//! reads or writes what the render thread holds (`crates/board/src/bus.rs`).
+//! reads or writes what the render thread holds (`crates/board/src/bus.rs`). The render
+//! thread holds the TMUs with the memory: their register and texture writes are queued
+//! behind the triangles before them ([`tmu_register`], [`tmu_texture`]).
 
+use pixelfx::pipeline::DrawState;
+use pixelfx::{Fbi, TriangleJob};
+use sst1_chain::Chain;
+use texelfx::Tmu;
+
+use crate::model::ChipModel;
 use crate::Board;
+
+/// A TMU register write, `[chips, offset, value]`: to each TMU the chip mask selects
+/// (bit 1 TMU 0, bit 2 TMU 1, bit 3 TMU 2).
+// `&mut Vec`: the render thread's chips are the board's `Vec<Tmu>` (`RenderThread<C>`).
+#[allow(clippy::ptr_arg)]
+pub(crate) fn tmu_register(tmus: &mut Vec<Tmu>, [chips, offset, value]: [u32; 3]) {
+    for (i, tmu) in tmus.iter_mut().enumerate() {
+        if chips & (2 << i) != 0 {
+            tmu.write_reg(offset, value);
+        }
+    }
+}
+
+/// A texture-memory write, `[tmu, offset, value]` (`offset` from the texture region's
+/// base; the board has checked the TMU exists).
+// `&mut Vec`: the render thread's chips are the board's `Vec<Tmu>` (`RenderThread<C>`).
+#[allow(clippy::ptr_arg)]
+pub(crate) fn tmu_texture(tmus: &mut Vec<Tmu>, [tmu, offset, value]: [u32; 3]) {
+    if let Some(t) = tmus.get_mut(tmu as usize) {
+        t.write_texture(offset, value);
+    }
+}
+
+/// A textured triangle's walk on the render thread, as the board draws one: the TMUs'
+/// subpixel correction (`adjust`, written back to their start registers), their
+/// per-triangle state, then the walk with the TMU chain as texel source.
+// `&mut Vec`: the render thread's chips are the board's `Vec<Tmu>` (`RenderThread<C>`).
+#[allow(clippy::ptr_arg)]
+pub(crate) fn draw_textured<M: ChipModel>(
+    twin: &mut Fbi,
+    tmus: &mut Vec<Tmu>,
+    st: &DrawState,
+    adjust: Option<(i32, i32)>,
+) {
+    for t in tmus.iter_mut() {
+        if let Some((dx, dy)) = adjust {
+            t.subpixel_adjust(dx, dy);
+        }
+        t.begin_triangle::<M>();
+    }
+    twin.shade_job::<M, _>(st, &mut Chain::<M>::new(tmus));
+}
 
 /// A run of bus writes on a board (see the module documentation). Dropping it waits for
 /// every queued triangle.
@@ -32,7 +82,7 @@ impl Board {
         self.render.as_ref().is_some_and(|r| r.is_lent())
     }
 
-    /// Wait for every queued triangle and take the memory back.
+    /// Wait for every queued triangle and take the memory and the TMUs back.
     ///
     /// # Panics
     /// If the render thread failed (a bug: a triangle's walk panicked there), as the walk
@@ -41,11 +91,39 @@ impl Board {
         let Some(render) = self.render.as_mut() else {
             return;
         };
-        if let Err(e) = render.settle(&mut self.fbi) {
-            self.render = None;
-            if !std::thread::panicking() {
-                panic!("{e}");
-            }
+        if let Err(e) = render.settle(&mut self.fbi, &mut self.tmus) {
+            self.render_failed(e);
+        }
+    }
+
+    /// Queue a triangle for the render thread ([`Board::defer`] said it may), lending
+    /// it the memory and the TMUs if it does not hold them.
+    pub(crate) fn defer_triangle(&mut self, job: TriangleJob<Vec<Tmu>>) {
+        let Some(render) = self.render.as_mut() else {
+            return;
+        };
+        if let Err(e) = render.push(&mut self.fbi, &mut self.tmus, job) {
+            self.render_failed(e);
+        }
+    }
+
+    /// Queue a write to the TMUs the render thread holds, behind the triangles before it.
+    pub(crate) fn lent_tmus(&mut self, apply: fn(&mut Vec<Tmu>, [u32; 3]), args: [u32; 3]) {
+        let Some(render) = self.render.as_mut() else {
+            return;
+        };
+        if let Err(e) = render.push_chips(apply, args) {
+            self.render_failed(e);
+        }
+    }
+
+    /// The render thread failed (a bug): it is dropped, and the failure panics this
+    /// thread as the walk would have, unless it is already panicking.
+    #[cold]
+    fn render_failed(&mut self, e: pixelfx::RenderThreadFailed) {
+        self.render = None;
+        if !std::thread::panicking() {
+            panic!("{e}");
         }
     }
 

@@ -125,9 +125,10 @@ pub struct Board {
     dac: video::Dac,
     /// Whether the timing model runs ([`Board::set_timing`]).
     timing_on: bool,
-    /// The render thread small untextured triangles are shaded on during the writes of
-    /// a [`Deferred`] run, with more than one render thread (started at the first).
-    render: Option<pixelfx::RenderThread>,
+    /// The render thread small triangles are shaded on during the writes of a
+    /// [`Deferred`] run, with more than one render thread (started at the first); it
+    /// holds the TMUs with the frame-buffer memory.
+    render: Option<pixelfx::RenderThread<Vec<Tmu>>>,
     /// Whether a triangle command may go to the render thread: only inside the writes of
     /// a [`Deferred`] run.
     deferring: bool,

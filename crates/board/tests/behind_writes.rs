@@ -1,17 +1,20 @@
-//! Small untextured triangles shaded on the render thread behind the writes
-//! (`pixelfx::deferred`, `Board::deferred`) against the same writes on one thread, where
-//! the order is most likely to break: every kind of access that reads or writes what the
-//! render thread holds comes right after blended triangles it is still shading (an LFB
-//! write under the next triangles and an LFB read of the last one, a FASTFILL, a swap, a
-//! fog-table write with fog on, `nopCMD` clearing the counters, a counter read, a new buffer layout, a
-//! textured triangle and a large one on the bands). Every frame-buffer word, every value
-//! read, the counters and the modelled time must be identical, and the render thread must
-//! have taken most of the triangles.
+//! Small triangles shaded on the render thread behind the writes (`pixelfx::deferred`,
+//! `Board::deferred`) against the same writes on one thread, where the order is most
+//! likely to break: every kind of access that reads or writes what the render thread
+//! holds comes right after blended triangles it is still shading (an LFB write under the
+//! next triangles and an LFB read of the last one, a FASTFILL, a swap, a fog-table write
+//! with fog on, `nopCMD` clearing the counters, a counter read, a new buffer layout, a
+//! large triangle on the bands), and textured rounds on two TMUs change the TMUs between
+//! their triangles (random `textureMode`, `tLOD` and base per TMU, texture-memory and
+//! NCC-table writes into the bound texture, subpixel correction of S, T and W). Every
+//! frame-buffer word, every value read, the counters and the modelled time must be
+//! identical, and the render thread must have taken most of the triangles.
 
 use sst1_board::{Board, BoardConfig};
 use sst1_regs::{addr, FbiInit2, RegisterBus};
 
 const LFB: u32 = 0x40_0000;
+const TEX: u32 = 0x80_0000;
 
 /// xorshift64* (Vigna), seeded.
 struct Rng(u64);
@@ -41,7 +44,7 @@ enum Access {
 }
 
 /// A triangle with its three vertices `size` pixels around `(x, y)` (12.4), random
-/// Gouraud colour, Z and alpha, drawn with `command`.
+/// Gouraud colour, Z and alpha, S, T and W, drawn with `command`.
 fn triangle(rng: &mut Rng, out: &mut Vec<Access>, (x, y): (u32, u32), size: u32, command: u32) {
     let regs = [addr::VERTEX_AX, addr::VERTEX_BX, addr::VERTEX_CX];
     for reg in regs {
@@ -60,6 +63,9 @@ fn triangle(rng: &mut Rng, out: &mut Vec<Access>, (x, y): (u32, u32), size: u32,
         addr::START_B,
         addr::START_A,
         addr::START_Z,
+        addr::START_S,
+        addr::START_T,
+        addr::START_W,
     ] {
         out.push(Access::Write(reg, rng.u32() & 0x00ff_ffff));
         out.push(Access::Write(reg + 0x20, rng.u32() & 0x1fff));
@@ -86,15 +92,65 @@ fn stream(seed: u64) -> Vec<Access> {
         let fbz = 1 << 14 | 1 << 9 | 1 << 10 | 1 << 4 | (rng.below(8) << 5) | 1 << 8 | 1;
         out.push(Access::Write(addr::FBZ_MODE, fbz));
         out.push(Access::Write(addr::ALPHA_MODE, 1 << 4 | 1 << 8 | 5 << 12));
-        out.push(Access::Write(addr::FBZ_COLOR_PATH, 0));
+        // Odd rounds textured, on both TMUs (TMU 0 at chip bit 1, TMU 1 at bit 2): one
+        // in two with random modes and any colour path, the other with the texel as the
+        // colour and TMU 0 on a 16x16 RGB565 bilinear level (tex_rgb565_bilinear's
+        // textureMode; LOD 4 alone) that the downloads below fill, so that a texel
+        // written or an S, T or W out of place shows. Subpixel correction or not.
+        let textured = round % 2 == 1;
+        let known = round % 4 == 1;
+        let adjust = rng.below(2) << 26;
+        let color_path = match (textured, known) {
+            (false, _) => 0,
+            (true, false) => rng.u32() | 1 << 27,
+            (true, true) => 0x0800_0005 | adjust,
+        };
+        out.push(Access::Write(addr::FBZ_COLOR_PATH, color_path));
+        if textured {
+            for chip in [2 << 10, 4 << 10] {
+                let (mode, lod, base) = if known && chip == 2 << 10 {
+                    (0x0824_1a00, 16 | 16 << 6, 0)
+                } else {
+                    (rng.u32(), rng.u32(), rng.below(64))
+                };
+                out.push(Access::Write(chip | addr::TEXTURE_MODE, mode));
+                out.push(Access::Write(chip | addr::T_LOD, lod));
+                out.push(Access::Write(chip | addr::TEX_BASE_ADDR, base));
+            }
+        }
+        if round == 1 {
+            // The whole 16x16 level, two texels a word.
+            for t in 0..16 {
+                for pair in 0..8 {
+                    out.push(Access::Write(
+                        TEX + (4 << 17) + (t << 9) + (pair << 2),
+                        rng.u32(),
+                    ));
+                }
+            }
+        }
         out.push(Access::Write(addr::FOG_MODE, rng.below(2)));
         out.push(Access::Write(addr::FOG_COLOR, rng.u32()));
         // All triangles of a round within 40 pixels of one place, so that they
         // overlap each other and what the round's hazard touches.
         let at = (20 + rng.below(560), 20 + rng.below(400));
-        for _ in 0..12 {
+        for k in 0..12 {
             let corner = (at.0 + rng.below(24), at.1 + rng.below(24));
             triangle(&mut rng, &mut out, corner, 10, addr::TRIANGLE_CMD);
+            if textured && k % 3 == 0 {
+                // Texture words into the first levels of either TMU, and an NCC
+                // register, between triangles still queued.
+                for _ in 0..8 {
+                    let texel = if known {
+                        TEX + (4 << 17) + (rng.below(16) << 9) + (rng.below(8) << 2)
+                    } else {
+                        TEX + (rng.below(2) << 21) + (rng.below(0x8000) << 2)
+                    };
+                    out.push(Access::Write(texel, rng.u32()));
+                }
+                let ncc = addr::NCC_TABLE0 + rng.below(24) * 4;
+                out.push(Access::Write(2 << 10 | ncc, rng.u32()));
+            }
         }
         let (x, y) = (at.0 + 12, at.1 + 12);
         let lfb = LFB + (y << 11) + (x << 1);
@@ -146,10 +202,8 @@ fn stream(seed: u64) -> Vec<Access> {
                 out.push(Access::Write(addr::FBI_INIT2, init2.0));
             }
             7 => {
-                // Textured (no texture downloaded: texel 0): the calling thread draws it.
-                out.push(Access::Write(addr::FBZ_COLOR_PATH, 1 << 27 | 1));
-                triangle(&mut rng, &mut out, at, 20, addr::TRIANGLE_CMD);
-                out.push(Access::Write(addr::FBZ_COLOR_PATH, 0));
+                // The float triangle command.
+                triangle(&mut rng, &mut out, at, 10, addr::F_TRIANGLE_CMD);
             }
             _ => triangle(
                 &mut rng,
@@ -172,7 +226,10 @@ fn stream(seed: u64) -> Vec<Access> {
 /// frame-buffer words, the values read, the counters, the modelled time and the pixels
 /// shaded behind the writes.
 fn replay(stream: &[Access], threads: usize) -> (Vec<u16>, Vec<u32>, String, u64) {
-    let mut board = Board::new(BoardConfig::default());
+    let mut board = Board::new(BoardConfig {
+        tmus: 2,
+        ..BoardConfig::default()
+    });
     board.set_threads(threads);
     board.pci_write(0x40, 3);
     let mut reads = Vec::new();

@@ -271,13 +271,13 @@ fn render_threads_take_large_untextured_triangles() {
     assert_eq!(counts.aliased_layout + counts.reference, 0, "{counts:?}");
 }
 
-/// Small untextured triangles are shaded on the render thread behind the writes
+/// Small triangles are shaded on the render thread behind the writes
 /// (`pixelfx::deferred`) on the traces above, so that [`check_all`]'s two- and
 /// four-thread runs prove them: most of the small-triangle scene's pixels, and some of
-/// the random-state scene's (where fills, LFB accesses, table writes and textured
+/// the random-state scene's (where fills, LFB accesses, table writes and large
 /// triangles call them back between).
 #[test]
-fn render_thread_takes_small_untextured_triangles() {
+fn render_thread_takes_small_triangles() {
     for (name, least) in [("small_tris", 15_000), ("random_states", 300)] {
         let path = traces("generated", |n| n == name);
         let trace = load_trace(&path[0]).unwrap_or_else(|e| panic!("{e}"));

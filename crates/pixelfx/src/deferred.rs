@@ -1,22 +1,25 @@
-//! Small untextured triangles shaded on a render thread of their own, while the calling
-//! thread goes on with the trace, the register writes and the timing model after them.
+//! Small triangles shaded on a render thread of their own, while the calling thread goes
+//! on with the trace, the register writes and the timing model after them.
 //!
 //! A triangle too small for bands of rows ([`crate::raster`]) is a few hundred cycles of
 //! walk and shading after a few hundred of register writes; on one thread they take turns.
-//! Here the calling thread keeps the registers and lends the render thread what the walk
-//! writes and reads besides them: the frame-buffer memory, the fog table and the profile.
-//! Each triangle goes over as a [`TriangleJob`], the drawing state and the parameters
-//! captured at its command; the render thread shades the jobs in order on an FBI of its
-//! own (its twin, whose registers are never read). [`RenderThread::settle`] takes the
-//! memory back, with the counters the jobs added; the board settles before anything that
+//! Here the calling thread keeps the FBI's registers and lends the render thread what the
+//! walk writes and reads besides them: the frame-buffer memory, the fog table and the
+//! profile, and the texel source's chips (`C`: the board lends its TMUs, whose register
+//! and texture writes then follow the triangles, [`RenderThread::push_chips`]). Each
+//! triangle goes over as a [`TriangleJob`], the drawing state and the parameters
+//! captured at its command; the render thread runs the jobs in order on an FBI of its own (its twin,
+//! whose registers are never read). [`RenderThread::settle`] takes the memory and the
+//! chips back, with the counters the jobs added; the board settles before anything that
 //! reads or writes the frame buffer, the counters or the tables (an LFB access, a
-//! FASTFILL, a swap, a textured or large triangle, a write to the fog table, an init
-//! register or `nopCMD`, and every access that is not a write). So every pixel and
-//! counter is what drawing each triangle at its command gives (the identity tests replay
-//! every trace with 1, 2 and 4 threads).
+//! FASTFILL, a swap, a large triangle, a write to the fog table, an init register or
+//! `nopCMD`, and every access that is not a write). So every pixel and counter is what
+//! drawing each triangle at its command gives (the identity tests replay every trace
+//! with 1, 2 and 4 threads).
 //!
-//! Memory is bounded: jobs go in batches of [`BATCH`] over a channel of [`IN_FLIGHT`]
-//! batches, and the calling thread waits while it is full.
+//! Memory is bounded: jobs go in batches of at most [`BATCH`] triangles and
+//! [`BATCH_WRITES`] chip writes over a channel of [`IN_FLIGHT`] batches, and the calling
+//! thread waits while it is full.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError};
@@ -33,14 +36,18 @@ use crate::model::PixelModel;
 use crate::params::TriangleParams;
 use crate::pipeline::DrawState;
 use crate::profile::PixelProfile;
-use crate::raster::NoTexture;
+use crate::raster::{NoTexture, TexelSource};
 use crate::stats::Stats;
 
-/// Jobs sent at a time (a channel operation per batch, not per triangle).
-const BATCH: usize = 32;
+/// Triangles sent at a time (a channel operation per batch, not per triangle; 32 gave
+/// 10-pixel textured triangles 0.90x the time of 256 on two threads, measured).
+const BATCH: usize = 256;
+
+/// Chip writes sent at a time at most (a texture download between two triangles is many).
+const BATCH_WRITES: usize = 4096;
 
 /// Batches the channel holds before the calling thread waits for the render thread.
-const IN_FLIGHT: usize = 64;
+const IN_FLIGHT: usize = 16;
 
 /// How long the render thread spins for the next batch before it sleeps, while it holds
 /// the memory (a sleeping thread's wake-up is a system call on the calling thread).
@@ -50,34 +57,94 @@ const SPIN: Duration = Duration::from_micros(200);
 const SETTLE_SPIN: Duration = Duration::from_micros(500);
 
 /// One triangle to shade: what its command captured.
-pub struct TriangleJob {
+pub struct TriangleJob<C> {
     st: DrawState,
     params: TriangleParams,
-    /// The walk of the board's model ([`draw_job`] for it).
-    draw: fn(&mut Fbi, &DrawState),
+    /// The walk of the board's model, with its texel source made from the lent chips
+    /// (`tex_adjust` passed on).
+    draw: DrawJob<C>,
+    /// The subpixel correction's 12.4 offsets, for chips that apply it first (the TMUs'
+    /// start registers of a textured triangle); `None`: none.
+    tex_adjust: Option<(i32, i32)>,
+}
+
+/// A job's walk: the twin, the lent chips, the captured state and the triangle's
+/// `tex_adjust`.
+pub type DrawJob<C> = fn(&mut Fbi, &mut C, &DrawState, Option<(i32, i32)>);
+
+/// A write to the lent chips (a TMU register or texture memory write: `apply` with its
+/// arguments), run before triangle `before` of its batch (or after the last, where
+/// `before` is their count).
+struct ChipWrite<C> {
+    before: u32,
+    apply: fn(&mut C, [u32; 3]),
+    args: [u32; 3],
+}
+
+/// What the render thread runs, in order: the triangles, with the chip writes between
+/// them (two lists, so that a write, a few words, is not stored as a triangle's
+/// hundreds of bytes).
+struct Batch<C> {
+    triangles: Vec<TriangleJob<C>>,
+    writes: Vec<ChipWrite<C>>,
+}
+
+impl<C> Batch<C> {
+    fn new() -> Self {
+        Self {
+            triangles: Vec::with_capacity(BATCH),
+            writes: Vec::new(),
+        }
+    }
+
+    fn is_empty(&self) -> bool {
+        self.triangles.is_empty() && self.writes.is_empty()
+    }
+
+    fn clear(&mut self) {
+        self.triangles.clear();
+        self.writes.clear();
+    }
+
+    /// Run the batch on `twin` and `chips`, in order.
+    fn run(&self, twin: &mut Fbi, chips: &mut C) {
+        let mut writes = self.writes.iter().peekable();
+        for (i, job) in self.triangles.iter().enumerate() {
+            while let Some(w) = writes.next_if(|w| w.before as usize == i) {
+                (w.apply)(chips, w.args);
+            }
+            twin.params = job.params;
+            (job.draw)(twin, chips, &job.st, job.tex_adjust);
+        }
+        for w in writes {
+            (w.apply)(chips, w.args);
+        }
+    }
 }
 
 /// What the calling thread lends: the frame buffer with its memory, and the tables the
 /// walk reads.
-struct Lent {
+struct Lent<C> {
     fb: FrameBuffer,
     fog_table: FogTable,
     profile: PixelProfile,
     isa: VectorIsa,
+    chips: C,
 }
 
 /// What comes back: the memory and what the jobs added to the counters.
-struct Returned {
+struct Returned<C> {
     ram: Vec<u16>,
+    chips: C,
     stats: Stats,
     path_counts: PathCounts,
     /// A job panicked (a bug): the memory is as the jobs before it left it.
     panicked: bool,
 }
 
-enum Message {
-    Lend(Box<Lent>),
-    Jobs(Vec<TriangleJob>),
+enum Message<C> {
+    Lend(Box<Lent<C>>),
+    Jobs(Batch<C>),
     Settle,
 }
 
@@ -92,18 +159,19 @@ pub enum RenderThreadFailed {
     Stopped,
 }
 
-/// The render thread and the calling thread's end of its channels.
-pub struct RenderThread {
-    to: Option<SyncSender<Message>>,
-    back: Receiver<Returned>,
+/// The render thread and the calling thread's end of its channels; `C`, the chips the
+/// texel source is made of, lent with the memory.
+pub struct RenderThread<C: Send + 'static> {
+    to: Option<SyncSender<Message<C>>>,
+    back: Receiver<Returned<C>>,
     /// Emptied batches coming back to be filled again (no allocation per batch).
-    spent: Receiver<Vec<TriangleJob>>,
-    batch: Vec<TriangleJob>,
+    spent: Receiver<Batch<C>>,
+    batch: Batch<C>,
     lent: bool,
     thread: Option<JoinHandle<()>>,
 }
 
-impl RenderThread {
+impl<C: Send + Default + 'static> RenderThread<C> {
     /// A render thread, or `None` where one cannot be started.
     pub fn start() -> Option<Self> {
         let (to, from) = mpsc::sync_channel(IN_FLIGHT);
@@ -117,7 +185,7 @@ impl RenderThread {
             to: Some(to),
             back,
             spent,
-            batch: Vec::with_capacity(BATCH),
+            batch: Batch::new(),
             lent: false,
             thread: Some(thread),
         })
@@ -129,27 +197,54 @@ impl RenderThread {
         self.lent
     }
 
-    /// Queue `job`, lending `fbi`'s memory first if the render thread does not hold it.
-    /// An error only where the render thread is gone (a bug; see [`RenderThread::settle`]).
-    pub fn push(&mut self, fbi: &mut Fbi, job: TriangleJob) -> Result<(), RenderThreadFailed> {
+    /// Queue `job`, lending `fbi`'s memory and `chips` first if the render thread does
+    /// not hold them (`chips` is left empty until [`RenderThread::settle`]). An error
+    /// only where the render thread is gone (a bug; see [`RenderThread::settle`]).
+    pub fn push(
+        &mut self,
+        fbi: &mut Fbi,
+        chips: &mut C,
+        job: TriangleJob<C>,
+    ) -> Result<(), RenderThreadFailed> {
         if !self.lent {
-            let lent = Box::new(fbi.lend());
+            let lent = Box::new(fbi.lend(std::mem::take(chips)));
             self.lent = true;
             self.send(Message::Lend(lent))?;
         }
-        self.batch.push(job);
-        if self.batch.len() == BATCH {
+        self.batch.triangles.push(job);
+        if self.batch.triangles.len() == BATCH {
             self.flush()?;
         }
         Ok(())
     }
 
-    /// Wait for every queued job and take the memory and the counters back into `fbi`.
-    /// Nothing to do if the render thread does not hold the memory.
+    /// Queue a write to the lent chips, behind the triangles queued before it; only
+    /// while they are lent ([`RenderThread::is_lent`]).
+    pub fn push_chips(
+        &mut self,
+        apply: fn(&mut C, [u32; 3]),
+        args: [u32; 3],
+    ) -> Result<(), RenderThreadFailed> {
+        debug_assert!(self.lent);
+        let before = self.batch.triangles.len() as u32;
+        self.batch.writes.push(ChipWrite {
+            before,
+            apply,
+            args,
+        });
+        if self.batch.writes.len() == BATCH_WRITES {
+            self.flush()?;
+        }
+        Ok(())
+    }
+
+    /// Wait for every queued job and take the memory and the counters back into `fbi`,
+    /// and the chips into `chips`. Nothing to do if the render thread does not hold the
+    /// memory.
     ///
-    /// An error (both are bugs): a job panicked, the memory as the jobs before it left
-    /// it; or the render thread is gone, and the memory with it.
-    pub fn settle(&mut self, fbi: &mut Fbi) -> Result<(), RenderThreadFailed> {
+    /// An error (both are bugs): a job panicked, the memory and chips as the jobs before
+    /// it left them; or the render thread is gone, and the memory with it.
+    pub fn settle(&mut self, fbi: &mut Fbi, chips: &mut C) -> Result<(), RenderThreadFailed> {
         if !self.lent {
             return Ok(());
         }
@@ -158,6 +253,7 @@ impl RenderThread {
         self.lent = false;
         let returned = receive(&self.back, SETTLE_SPIN).ok_or(RenderThreadFailed::Stopped)?;
         fbi.take_back(returned.ram, &returned.stats, &returned.path_counts);
+        *chips = returned.chips;
         if returned.panicked {
             return Err(RenderThreadFailed::Panicked);
         }
@@ -168,15 +264,12 @@ impl RenderThread {
         if self.batch.is_empty() {
             return Ok(());
         }
-        let next = self
-            .spent
-            .try_recv()
-            .unwrap_or_else(|_| Vec::with_capacity(BATCH));
+        let next = self.spent.try_recv().unwrap_or_else(|_| Batch::new());
         let full = std::mem::replace(&mut self.batch, next);
         self.send(Message::Jobs(full))
     }
 
-    fn send(&self, message: Message) -> Result<(), RenderThreadFailed> {
+    fn send(&self, message: Message<C>) -> Result<(), RenderThreadFailed> {
         match self.to.as_ref().map(|to| to.send(message)) {
             Some(Ok(())) => Ok(()),
             _ => Err(RenderThreadFailed::Stopped),
@@ -184,7 +277,7 @@ impl RenderThread {
     }
 }
 
-impl Drop for RenderThread {
+impl<C: Send + 'static> Drop for RenderThread<C> {
     fn drop(&mut self) {
         // Closing the channel ends the thread (after the batch it is shading).
         self.to = None;
@@ -215,8 +308,13 @@ fn receive<T>(from: &Receiver<T>, spin: Duration) -> Option<T> {
 }
 
 /// The render thread: shades the jobs in order on its twin FBI while it holds the memory.
-fn serve(from: Receiver<Message>, give: SyncSender<Returned>, spend: SyncSender<Vec<TriangleJob>>) {
+fn serve<C: Default>(
+    from: Receiver<Message<C>>,
+    give: SyncSender<Returned<C>>,
+    spend: SyncSender<Batch<C>>,
+) {
     let mut twin: Option<Fbi> = None;
+    let mut chips = C::default();
     let mut holding = false;
     let mut panicked = false;
     loop {
@@ -231,21 +329,31 @@ fn serve(from: Receiver<Message>, give: SyncSender<Returned>, spend: SyncSender<
         };
         match message {
             Message::Lend(lent) => {
+                let Lent {
+                    fb,
+                    fog_table,
+                    profile,
+                    isa,
+                    chips: lent_chips,
+                } = *lent;
+                chips = lent_chips;
+                let fbi = Lent {
+                    fb,
+                    fog_table,
+                    profile,
+                    isa,
+                    chips: (),
+                };
                 match twin.as_mut() {
-                    Some(t) => t.borrow(*lent),
-                    None => twin = Some(Fbi::twin(*lent)),
+                    Some(t) => t.borrow(fbi),
+                    None => twin = Some(Fbi::twin(fbi)),
                 }
                 holding = true;
                 panicked = false;
             }
             Message::Jobs(mut jobs) => {
                 if let (Some(t), false) = (twin.as_mut(), panicked) {
-                    let shaded = catch_unwind(AssertUnwindSafe(|| {
-                        for job in &jobs {
-                            t.params = job.params;
-                            (job.draw)(t, &job.st);
-                        }
-                    }));
+                    let shaded = catch_unwind(AssertUnwindSafe(|| jobs.run(t, &mut chips)));
                     panicked = shaded.is_err();
                 }
                 jobs.clear();
@@ -257,6 +365,7 @@ fn serve(from: Receiver<Message>, give: SyncSender<Returned>, spend: SyncSender<
                 };
                 let returned = Returned {
                     ram: std::mem::take(&mut t.fb.ram),
+                    chips: std::mem::take(&mut chips),
                     stats: std::mem::take(&mut t.stats),
                     path_counts: std::mem::take(&mut t.path_counts),
                     panicked,
@@ -270,30 +379,41 @@ fn serve(from: Receiver<Message>, give: SyncSender<Returned>, spend: SyncSender<
     }
 }
 
-/// A job's walk: the triangle counted and shaded as [`Fbi::draw_triangle`] does with the
-/// span kernels and no texture.
-fn draw_job<M: PixelModel>(twin: &mut Fbi, st: &DrawState) {
-    twin.stats.triangles += 1;
-    twin.walk::<M, NoTexture, true>(st, &mut NoTexture);
+/// An untextured triangle's walk: counted and shaded as [`Fbi::draw_triangle`] does with
+/// the span kernels and no texture.
+pub fn draw_untextured<M: PixelModel, C>(
+    twin: &mut Fbi,
+    _: &mut C,
+    st: &DrawState,
+    _: Option<(i32, i32)>,
+) {
+    twin.shade_job::<M, _>(st, &mut NoTexture);
 }
 
 impl Fbi {
     /// Whether the triangle in the parameter registers may be shaded on the render
-    /// thread (the board decides the rest: untextured, and no texel source): span
-    /// kernels, no watched pixel, and too small for bands of rows.
+    /// thread (the board decides the rest): span kernels, no watched pixel, too small
+    /// for bands of rows, and a colour buffer to draw into (a triangle with none is
+    /// counted at its command, its texel source's state updated as it would be).
     #[inline]
     pub fn deferrable<M: PixelModel>(&self) -> bool {
         M::SPAN_KERNELS
             && !self.generic_path
             && self.watch.is_none()
             && crate::raster::box_pixels(&self.params) < crate::raster::MIN_THREADED_PIXELS as u64
+            && self.colour_buffer(self.fbz_mode().draw_buffer()).is_some()
     }
 
-    /// The job of the untextured triangle in the parameter registers (the `triangleCMD`
-    /// command, after any subpixel correction), and the pixels and spans its walk will
-    /// count ([`Fbi::walk_counts`]); `None`, the triangle counted, where `fbzMode` selects
-    /// no colour buffer (nothing to draw, as [`Fbi::draw_triangle`]).
-    pub fn triangle_job<M: PixelModel>(&mut self) -> Option<TriangleJob> {
+    /// The job of the triangle in the parameter registers (the `triangleCMD` command,
+    /// after the FBI's subpixel correction), drawn by `draw` (for example
+    /// [`draw_untextured`]) with `tex_adjust` (see [`TriangleJob`]); `None`, the triangle
+    /// counted, where `fbzMode` selects no colour buffer (nothing to draw, as
+    /// [`Fbi::draw_triangle`]).
+    pub fn triangle_job<M: PixelModel, C>(
+        &mut self,
+        draw: DrawJob<C>,
+        tex_adjust: Option<(i32, i32)>,
+    ) -> Option<TriangleJob<C>> {
         let Some(dest) = self.colour_buffer(self.fbz_mode().draw_buffer()) else {
             self.stats.triangles += 1;
             return None;
@@ -301,13 +421,21 @@ impl Fbi {
         Some(TriangleJob {
             st: DrawState::capture::<M>(self, dest),
             params: self.params,
-            draw: draw_job::<M>,
+            draw,
+            tex_adjust,
         })
+    }
+
+    /// A job's triangle on the twin: counted and shaded as [`Fbi::draw_triangle`] does
+    /// with the span kernels, from `tex`.
+    pub fn shade_job<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
+        self.stats.triangles += 1;
+        self.walk::<M, T, true>(st, tex);
     }
 
     /// The frame buffer with its memory (this FBI keeps the layout and buffer indices,
     /// with no memory, until [`Fbi::take_back`]) and copies of the walk's tables.
-    fn lend(&mut self) -> Lent {
+    fn lend<C>(&mut self, chips: C) -> Lent<C> {
         let fb = FrameBuffer {
             ram: std::mem::take(&mut self.fb.ram),
             layout: self.fb.layout,
@@ -319,6 +447,7 @@ impl Fbi {
             fog_table: self.fog_table.clone(),
             profile: self.profile,
             isa: self.isa,
+            chips,
         }
     }
 
@@ -336,7 +465,7 @@ impl Fbi {
     }
 
     /// The render thread's FBI, drawing into `lent` (its registers are never read).
-    fn twin(lent: Lent) -> Fbi {
+    fn twin(lent: Lent<()>) -> Fbi {
         Fbi {
             regs: [0; 256],
             params: TriangleParams::default(),
@@ -358,7 +487,7 @@ impl Fbi {
 
     /// The twin drawing into `lent` again (the dither tables rebuilt only for another
     /// 2x2 matrix).
-    fn borrow(&mut self, lent: Lent) {
+    fn borrow(&mut self, lent: Lent<()>) {
         if lent.profile.dither_2x2 != self.profile.dither_2x2 {
             self.dither = Dither::new(lent.profile.dither_2x2);
         }

@@ -91,8 +91,8 @@ pub struct PathCounts {
     pub short_rows: u64,
     /// Pixel by pixel because the reference path was forced ([`Fbi::set_generic_path`]).
     pub reference: u64,
-    /// Of all the above, of small untextured triangles shaded on the render thread while
-    /// the calling thread went on with the writes after them ([`crate::deferred`]).
+    /// Of all the above, of small triangles shaded on the render thread while the
+    /// calling thread went on with the writes after them ([`crate::deferred`]).
     pub behind_writes: u64,
 }
 

@@ -952,7 +952,7 @@ fn replay(
             println!("swaps        {}", c.swaps);
             let paths = board.path_counts();
             println!(
-                "shaded by    span kernels {} ({} on render threads, {} in chunks packed from short rows; compiled for {}), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {}); of all, {} of small untextured triangles on the render thread behind the writes",
+                "shaded by    span kernels {} ({} on render threads, {} in chunks packed from short rows; compiled for {}), pixel by pixel {} (rows of at most 2 pixels {}, aliased buffers {}, reference path {}); of all, {} of small triangles on the render thread behind the writes",
                 paths.span_kernels,
                 paths.in_bands,
                 paths.packed,
