@@ -13,28 +13,11 @@
 use sst1_board::{Board, BoardConfig};
 use sst1_regs::{addr, FbiInit2, RegisterBus};
 
+mod common;
+use common::Rng;
+
 const LFB: u32 = 0x40_0000;
 const TEX: u32 = 0x80_0000;
-
-/// xorshift64* (Vigna), seeded.
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Self(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1)
-    }
-
-    fn u32(&mut self) -> u32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 32) as u32
-    }
-
-    fn below(&mut self, n: u32) -> u32 {
-        self.u32() % n
-    }
-}
 
 /// One access of the stream: a write, or a read whose value is kept.
 #[derive(Clone, Copy)]

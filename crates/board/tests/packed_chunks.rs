@@ -11,30 +11,8 @@
 use sst1_board::{Board, BoardConfig, VectorIsa};
 use sst1_regs::{addr, FbiInit2, RegisterBus};
 
-/// xorshift64* (Vigna), seeded.
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Self(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1)
-    }
-
-    fn u32(&mut self) -> u32 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 32) as u32
-    }
-
-    fn below(&mut self, n: u32) -> u32 {
-        self.u32() % n
-    }
-
-    /// A value in `lo..hi`.
-    fn within(&mut self, lo: i32, hi: i32) -> i32 {
-        lo + self.below((hi - lo) as u32) as i32
-    }
-}
+mod common;
+use common::Rng;
 
 /// The write stream of one seed: the Glide mode set, then states and small triangles.
 fn stream(seed: u64) -> Vec<(u32, u32)> {

@@ -21,6 +21,9 @@
 use sst1_board::{Board, BoardConfig, BufferKind, Diagnostics, Stats, VectorIsa};
 use sst1_regs::{addr, RegisterBus};
 
+mod common;
+use common::Rng;
+
 /// Start of the LFB region of the aperture (spec 4).
 const LFB_BASE: u32 = 0x40_0000;
 /// Start of the texture region of the aperture (spec 4).
@@ -42,41 +45,6 @@ fn init(board: &mut Board) {
 }
 
 // --- the generator -----------------------------------------------------------------
-
-/// xorshift64* (Vigna): small, fast and good enough to pick test inputs.
-struct Rng(u64);
-
-impl Rng {
-    fn new(seed: u64) -> Self {
-        // Any non-zero state works; mix the seed so that small seeds differ at once.
-        Self(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1)
-    }
-
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
-    }
-
-    fn u32(&mut self) -> u32 {
-        (self.next() >> 32) as u32
-    }
-
-    /// Uniform in `0..n` (n > 0; the modulo bias does not matter here).
-    fn below(&mut self, n: u32) -> u32 {
-        self.u32() % n
-    }
-
-    fn pick<T: Copy>(&mut self, items: &[T]) -> T {
-        items[self.below(items.len() as u32) as usize]
-    }
-
-    /// True with probability `percent` / 100.
-    fn chance(&mut self, percent: u32) -> bool {
-        self.below(100) < percent
-    }
-}
 
 /// One bus operation.
 #[derive(Clone, Copy, Debug)]
