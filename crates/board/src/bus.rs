@@ -224,7 +224,11 @@ impl Board {
         let restores = cp.param_adjust() && !profile.param_origin.writes_back();
         // A small triangle goes to the render thread (which then holds the TMUs too);
         // any other waits for what is queued there.
-        let deferring = !restores && self.fbi.deferrable::<M>() && self.defer();
+        let deferring = !restores
+            && self.deferring
+            && self.fbi.threads() > 1
+            && self.fbi.deferrable::<M>()
+            && self.defer();
         if !deferring {
             self.settle();
         }
