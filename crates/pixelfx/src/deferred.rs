@@ -39,8 +39,9 @@ use crate::profile::PixelProfile;
 use crate::raster::{NoTexture, TexelSource};
 use crate::stats::Stats;
 
-/// Triangles sent at a time (a channel operation per batch, not per triangle; 32 gave
-/// 10-pixel textured triangles 0.90x the time of 256 on two threads, measured).
+/// Triangles sent at a time (a channel operation per batch, not per triangle; 10-pixel
+/// textured triangles on two threads ran in 0.90x the time with 256 as with 32,
+/// measured: docs/performance.md).
 const BATCH: usize = 256;
 
 /// Chip writes sent at a time at most (a texture download between two triangles is many).
