@@ -2,7 +2,8 @@
 //! `Board::deferred`) against the same writes on one thread, where the order is most
 //! likely to break: every kind of access that reads or writes what the render thread
 //! holds comes right after blended triangles it is still shading (an LFB write under the
-//! next triangles and an LFB read of the last one, a FASTFILL, a swap, a fog-table write
+//! next triangles and an LFB read of the last one, a FASTFILL, a new vertical timing and a
+//! swap on the retrace, a fog-table write
 //! with fog on, `nopCMD` clearing the counters, a counter read, a new buffer layout, a
 //! large triangle on the bands), and textured rounds on two TMUs change the TMUs between
 //! their triangles (random `textureMode`, `tLOD` and base per TMU, texture-memory and
@@ -158,7 +159,14 @@ fn stream(seed: u64) -> Vec<Access> {
                 out.push(Access::Write(addr::CLIP_LEFT_RIGHT, 640));
                 out.push(Access::Write(addr::CLIP_LOW_Y_HIGH_Y, 480));
             }
-            3 => out.push(Access::Write(addr::SWAPBUFFER_CMD, 0)),
+            3 => {
+                // A new vertical timing (the frame's length), then a swap that waits
+                // for the retrace.
+                let lines = 0x020b + rng.below(64);
+                out.push(Access::Write(addr::V_SYNC, lines << 16 | 2));
+                triangle(&mut rng, &mut out, at, 10, addr::TRIANGLE_CMD);
+                out.push(Access::Write(addr::SWAPBUFFER_CMD, 1));
+            }
             4 => {
                 let entry = rng.below(32) * 4;
                 out.push(Access::Write(addr::FOG_TABLE + entry, rng.u32()));
