@@ -100,17 +100,17 @@ static ROUTES: [u8; 256] = {
 /// commands settle on their own.
 #[inline]
 fn settles_render(offset: u32) -> bool {
-    match offset & 0x3fc {
-        addr::FOG_TABLE..=addr::FOG_TABLE_LAST => true,
-        addr::NOP_CMD
-        | addr::FBI_INIT0
-        | addr::FBI_INIT1
-        | addr::FBI_INIT2
-        | addr::FBI_INIT3
-        | addr::FBI_INIT4
-        | addr::VIDEO_DIMENSIONS => true,
-        _ => false,
-    }
+    matches!(
+        offset & 0x3fc,
+        (addr::FOG_TABLE..=addr::FOG_TABLE_LAST)
+            | addr::NOP_CMD
+            | addr::FBI_INIT0
+            | addr::FBI_INIT1
+            | addr::FBI_INIT2
+            | addr::FBI_INIT3
+            | addr::FBI_INIT4
+            | addr::VIDEO_DIMENSIONS
+    )
 }
 
 impl Board {
