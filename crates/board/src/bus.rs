@@ -222,13 +222,15 @@ impl Board {
         let profile = M::pixel(&self.fbi.profile());
         // ParamOrigin::RoundedVertex (86Box): the correction lasts this triangle only.
         let restores = cp.param_adjust() && !profile.param_origin.writes_back();
-        // A small triangle goes to the render thread (which then holds the TMUs too);
-        // any other waits for what is queued there.
-        let deferring = !restores
-            && self.deferring
-            && self.fbi.threads() > 1
-            && self.fbi.deferrable::<M>()
-            && self.defer();
+        // A small triangle goes to the render thread (which then holds the TMUs too),
+        // into this colour buffer; any other waits for what is queued there. The cheap
+        // tests first: one thread computes nothing more.
+        let deferred_dest = if !restores && self.deferring && self.fbi.threads() > 1 {
+            self.fbi.deferrable::<M>().filter(|_| self.start_render())
+        } else {
+            None
+        };
+        let deferring = deferred_dest.is_some();
         if !deferring {
             self.settle();
         }
@@ -249,24 +251,21 @@ impl Board {
                 }
             }
         }
-        let (pixels, spans) = if deferring {
+        let (pixels, spans) = if let Some(dest) = deferred_dest {
             let draw: pixelfx::DrawJob<Vec<Tmu>> = if texturing {
                 deferred::draw_textured::<M>
             } else {
                 pixelfx::draw_untextured::<M, Vec<Tmu>>
             };
-            match self.fbi.triangle_job::<M, _>(draw, tex_adjust) {
-                Some(job) => {
-                    let counts = if self.timing_on {
-                        self.fbi.walk_counts::<M>()
-                    } else {
-                        (0, 0)
-                    };
-                    self.defer_triangle(job);
-                    counts
-                }
-                None => (0, 0),
-            }
+            let job = self.fbi.triangle_job::<M, _>(dest, draw, tex_adjust);
+            // Timed here, in order with the writes, from a walk that only counts.
+            let counts = if self.timing_on {
+                self.fbi.walk_counts::<M>()
+            } else {
+                (0, 0)
+            };
+            self.defer_triangle(job);
+            counts
         } else {
             let before = self.fbi.stats;
             if texturing {

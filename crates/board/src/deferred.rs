@@ -66,9 +66,9 @@ pub struct Deferred<'b> {
 }
 
 impl Board {
-    /// A run of writes whose small untextured triangles may be shaded on a render thread
-    /// (with more than one render thread, [`Board::set_threads`]; with one, the writes
-    /// are [`RegisterBus::write32`]s). Pixels, counters and timing are those of the same
+    /// A run of writes whose small triangles may be shaded on a render thread (with more
+    /// than one render thread, [`Board::set_threads`]; with one, the writes are
+    /// [`RegisterBus::write32`]s). Pixels, counters and timing are those of the same
     /// writes one by one.
     ///
     /// [`RegisterBus::write32`]: sst1_regs::RegisterBus::write32
@@ -96,8 +96,8 @@ impl Board {
         }
     }
 
-    /// Queue a triangle for the render thread ([`Board::defer`] said it may), lending
-    /// it the memory and the TMUs if it does not hold them.
+    /// Queue a triangle for the render thread ([`Board::start_render`] said it runs),
+    /// lending it the memory and the TMUs if it does not hold them.
     pub(crate) fn defer_triangle(&mut self, job: TriangleJob<Vec<Tmu>>) {
         let Some(render) = self.render.as_mut() else {
             return;
@@ -127,13 +127,11 @@ impl Board {
         }
     }
 
-    /// Whether a triangle may be queued for the render thread, which is started if need
-    /// be: not outside a [`Deferred`] run, with one render thread, or where none can start.
+    /// Whether the render thread runs, started if need be (the caller has checked that
+    /// this is a [`Deferred`] run with more than one render thread); `false` where none
+    /// can start.
     #[inline]
-    pub(crate) fn defer(&mut self) -> bool {
-        if !self.deferring || self.fbi.threads() < 2 {
-            return false;
-        }
+    pub(crate) fn start_render(&mut self) -> bool {
         if self.render.is_none() {
             self.render = pixelfx::RenderThread::start();
             if self.render.is_none() {

@@ -8,14 +8,14 @@
 //! profile, and the texel source's chips (`C`: the board lends its TMUs, whose register
 //! and texture writes then follow the triangles, [`RenderThread::push_chips`]). Each
 //! triangle goes over as a [`TriangleJob`], the drawing state and the parameters
-//! captured at its command; the render thread runs the jobs in order on an FBI of its own (its twin,
-//! whose registers are never read). [`RenderThread::settle`] takes the memory and the
-//! chips back, with the counters the jobs added; the board settles before anything that
-//! reads or writes the frame buffer, the counters or the tables (an LFB access, a
-//! FASTFILL, a swap, a large triangle, a write to the fog table, an init register or
-//! `nopCMD`, and every access that is not a write). So every pixel and counter is what
-//! drawing each triangle at its command gives (the identity tests replay every trace
-//! with 1, 2 and 4 threads).
+//! captured at its command; the render thread runs the jobs in order on an FBI of its
+//! own (its twin, whose registers are never read). [`RenderThread::settle`] takes the
+//! memory and the chips back, with the counters the jobs added; the board settles
+//! before anything that reads or writes the frame buffer, the counters or the tables
+//! (an LFB access, a FASTFILL, a swap, a large triangle, a write to the fog table, an
+//! init register or `nopCMD`, and every access that is not a write). So every pixel and
+//! counter is what drawing each triangle at its command gives (the identity tests
+//! replay every trace with 1, 2 and 4 threads).
 //!
 //! Memory is bounded: jobs go in batches of at most [`BATCH`] triangles and
 //! [`BATCH_WRITES`] chip writes over a channel of [`IN_FLIGHT`] batches, and the calling
@@ -123,14 +123,19 @@ impl<C> Batch<C> {
     }
 }
 
-/// What the calling thread lends: the frame buffer with its memory, and the tables the
-/// walk reads.
+/// What the calling thread lends: the FBI's part, and the chips.
 struct Lent<C> {
+    fbi: LentFbi,
+    chips: C,
+}
+
+/// The FBI's part of what is lent: the frame buffer with its memory, and the tables the
+/// walk reads.
+struct LentFbi {
     fb: FrameBuffer,
     fog_table: FogTable,
     profile: PixelProfile,
     isa: VectorIsa,
-    chips: C,
 }
 
 /// What comes back: the memory and what the jobs added to the counters.
@@ -208,7 +213,10 @@ impl<C: Send + Default + 'static> RenderThread<C> {
         job: TriangleJob<C>,
     ) -> Result<(), RenderThreadFailed> {
         if !self.lent {
-            let lent = Box::new(fbi.lend(std::mem::take(chips)));
+            let lent = Box::new(Lent {
+                fbi: fbi.lend(),
+                chips: std::mem::take(chips),
+            });
             self.lent = true;
             self.send(Message::Lend(lent))?;
         }
@@ -330,21 +338,8 @@ fn serve<C: Default>(
         };
         match message {
             Message::Lend(lent) => {
-                let Lent {
-                    fb,
-                    fog_table,
-                    profile,
-                    isa,
-                    chips: lent_chips,
-                } = *lent;
-                chips = lent_chips;
-                let fbi = Lent {
-                    fb,
-                    fog_table,
-                    profile,
-                    isa,
-                    chips: (),
-                };
+                let Lent { fbi, chips: lent } = *lent;
+                chips = lent;
                 match twin.as_mut() {
                     Some(t) => t.borrow(fbi),
                     None => twin = Some(Fbi::twin(fbi)),
@@ -392,39 +387,39 @@ pub fn draw_untextured<M: PixelModel, C>(
 }
 
 impl Fbi {
-    /// Whether the triangle in the parameter registers may be shaded on the render
-    /// thread (the board decides the rest): span kernels, no watched pixel, too small
-    /// for bands of rows, and a colour buffer to draw into (a triangle with none is
-    /// counted at its command, its texel source's state updated as it would be).
+    /// The colour buffer the triangle in the parameter registers draws into, if it may
+    /// be shaded on the render thread (the board decides the rest): span kernels, no
+    /// watched pixel, too small for bands of rows, and a colour buffer to draw into (a
+    /// triangle with none is counted at its command, its texel source's state updated
+    /// as it would be).
     #[inline]
-    pub fn deferrable<M: PixelModel>(&self) -> bool {
-        M::SPAN_KERNELS
-            && !self.generic_path
-            && self.watch.is_none()
-            && crate::raster::box_pixels(&self.params) < crate::raster::MIN_THREADED_PIXELS as u64
-            && self.colour_buffer(self.fbz_mode().draw_buffer()).is_some()
+    pub fn deferrable<M: PixelModel>(&self) -> Option<usize> {
+        if !M::SPAN_KERNELS
+            || self.generic_path
+            || self.watch.is_some()
+            || crate::raster::box_pixels(&self.params) >= crate::raster::MIN_THREADED_PIXELS as u64
+        {
+            return None;
+        }
+        self.colour_buffer(self.fbz_mode().draw_buffer())
     }
 
     /// The job of the triangle in the parameter registers (the `triangleCMD` command,
-    /// after the FBI's subpixel correction), drawn by `draw` (for example
-    /// [`draw_untextured`]) with `tex_adjust` (see [`TriangleJob`]); `None`, the triangle
-    /// counted, where `fbzMode` selects no colour buffer (nothing to draw, as
-    /// [`Fbi::draw_triangle`]).
+    /// after the FBI's subpixel correction) into colour buffer `dest`
+    /// ([`Fbi::deferrable`]), drawn by `draw` (for example [`draw_untextured`]) with
+    /// `tex_adjust` (see [`TriangleJob`]).
     pub fn triangle_job<M: PixelModel, C>(
-        &mut self,
+        &self,
+        dest: usize,
         draw: DrawJob<C>,
         tex_adjust: Option<(i32, i32)>,
-    ) -> Option<TriangleJob<C>> {
-        let Some(dest) = self.colour_buffer(self.fbz_mode().draw_buffer()) else {
-            self.stats.triangles += 1;
-            return None;
-        };
-        Some(TriangleJob {
+    ) -> TriangleJob<C> {
+        TriangleJob {
             st: DrawState::capture::<M>(self, dest),
             params: self.params,
             draw,
             tex_adjust,
-        })
+        }
     }
 
     /// A job's triangle on the twin: counted and shaded as [`Fbi::draw_triangle`] does
@@ -436,19 +431,18 @@ impl Fbi {
 
     /// The frame buffer with its memory (this FBI keeps the layout and buffer indices,
     /// with no memory, until [`Fbi::take_back`]) and copies of the walk's tables.
-    fn lend<C>(&mut self, chips: C) -> Lent<C> {
+    fn lend(&mut self) -> LentFbi {
         let fb = FrameBuffer {
             ram: std::mem::take(&mut self.fb.ram),
             layout: self.fb.layout,
             front: self.fb.front,
             back: self.fb.back,
         };
-        Lent {
+        LentFbi {
             fb,
             fog_table: self.fog_table.clone(),
             profile: self.profile,
             isa: self.isa,
-            chips,
         }
     }
 
@@ -466,7 +460,7 @@ impl Fbi {
     }
 
     /// The render thread's FBI, drawing into `lent` (its registers are never read).
-    fn twin(lent: Lent<()>) -> Fbi {
+    fn twin(lent: LentFbi) -> Fbi {
         Fbi {
             regs: [0; 256],
             params: TriangleParams::default(),
@@ -488,7 +482,7 @@ impl Fbi {
 
     /// The twin drawing into `lent` again (the dither tables rebuilt only for another
     /// 2x2 matrix).
-    fn borrow(&mut self, lent: Lent<()>) {
+    fn borrow(&mut self, lent: LentFbi) {
         if lent.profile.dither_2x2 != self.profile.dither_2x2 {
             self.dither = Dither::new(lent.profile.dither_2x2);
         }

@@ -297,10 +297,6 @@ impl Fbi {
     /// Screen row of raster row `y`, after the Y origin flip when `flip` is set.
     #[inline]
     pub fn screen_y(&self, y: i32, flip: bool) -> i32 {
-        if flip {
-            (self.y_origin() - y) & 0x3ff
-        } else {
-            y
-        }
+        crate::pipeline::screen_row(self.y_origin(), y, flip)
     }
 }

@@ -108,11 +108,18 @@ impl DrawState {
     /// [`Fbi::screen_y`] with the registers captured).
     #[inline]
     pub fn screen_y(&self, y: i32, flip: bool) -> i32 {
-        if flip {
-            (self.y_origin - y) & 0x3ff
-        } else {
-            y
-        }
+        screen_row(self.y_origin, y, flip)
+    }
+}
+
+/// Screen row of raster row `y` with Y origin subtraction value `y_origin`
+/// (`fbiInit3[31:22]`), flipped when `flip` is set (spec 5.19, `fbzMode` bit 17).
+#[inline]
+pub(crate) fn screen_row(y_origin: i32, y: i32, flip: bool) -> i32 {
+    if flip {
+        (y_origin - y) & 0x3ff
+    } else {
+        y
     }
 }
 
