@@ -9,6 +9,8 @@
 //! thread holds the TMUs with the memory: their register and texture writes are queued
 //! behind the triangles before them ([`tmu_register`], [`tmu_texture`]).
 
+use std::borrow::BorrowMut;
+
 use pixelfx::pipeline::DrawState;
 use pixelfx::{Fbi, TriangleJob};
 use sst1_chain::Chain;
@@ -59,10 +61,17 @@ pub(crate) fn draw_textured<M: ChipModel>(
     twin.shade_job::<M, _>(st, &mut Chain::<M>::new(tmus));
 }
 
-/// A run of bus writes on a board (see the module documentation). Dropping it waits for
-/// every queued triangle.
-pub struct Deferred<'b> {
-    board: &'b mut Board,
+/// A run of bus writes on a board (see the module documentation), which it borrows
+/// (`B` = `&mut Board`, [`Board::deferred`]) or owns (`B` = [`Board`],
+/// [`Deferred::new`]: a Glide library's board, written one call at a time for a whole
+/// session). Dropping it waits for every queued triangle.
+///
+/// It is a [`RegisterBus`]: its writes may leave triangles queued; its reads settle
+/// first, as the board's do.
+///
+/// [`RegisterBus`]: sst1_regs::RegisterBus
+pub struct Deferred<B: BorrowMut<Board>> {
+    board: B,
 }
 
 impl Board {
@@ -72,7 +81,7 @@ impl Board {
     /// writes one by one.
     ///
     /// [`RegisterBus::write32`]: sst1_regs::RegisterBus::write32
-    pub fn deferred(&mut self) -> Deferred<'_> {
+    pub fn deferred(&mut self) -> Deferred<&mut Board> {
         Deferred { board: self }
     }
 
@@ -143,31 +152,63 @@ impl Board {
     }
 }
 
-impl Deferred<'_> {
+impl Deferred<Board> {
+    /// A board that keeps its small triangles behind the writes for as long as it is
+    /// held: as [`Board::deferred`], owned.
+    pub fn new(board: Board) -> Self {
+        Self { board }
+    }
+}
+
+impl<B: BorrowMut<Board>> Deferred<B> {
     /// A bus write ([`RegisterBus::write32`](sst1_regs::RegisterBus::write32)).
     pub fn write32(&mut self, bus_addr: u32, value: u32) {
-        self.board.deferring = true;
-        sst1_regs::RegisterBus::write32(self.board, bus_addr, value);
-        self.board.deferring = false;
+        let board = self.board.borrow_mut();
+        board.deferring = true;
+        sst1_regs::RegisterBus::write32(board, bus_addr, value);
+        board.deferring = false;
     }
 
     /// The bus writes `writes` in order ([`Board::write32_all`]).
     pub fn write32_all(&mut self, writes: &[(u32, u32)]) {
-        self.board.deferring = true;
-        self.board.write32_all(writes);
-        self.board.deferring = false;
+        let board = self.board.borrow_mut();
+        board.deferring = true;
+        board.write32_all(writes);
+        board.deferring = false;
     }
 
     /// The board, every queued triangle drawn.
     pub fn board(&mut self) -> &mut Board {
-        self.board.settle();
-        self.board
+        let board = self.board.borrow_mut();
+        board.settle();
+        board
     }
 }
 
-impl Drop for Deferred<'_> {
+impl<B: BorrowMut<Board>> sst1_regs::RegisterBus for Deferred<B> {
+    fn write32(&mut self, bus_addr: u32, value: u32) {
+        Deferred::write32(self, bus_addr, value);
+    }
+
+    fn read32(&mut self, bus_addr: u32) -> u32 {
+        // The board's reads settle first.
+        self.board.borrow_mut().read32(bus_addr)
+    }
+
+    fn pci_write(&mut self, offset: u32, value: u32) {
+        self.board().pci_write(offset, value);
+    }
+
+    fn host_wait(&mut self, cycles: u64) {
+        // The timing model stays on this thread: nothing to settle.
+        self.board.borrow_mut().host_wait(cycles);
+    }
+}
+
+impl<B: BorrowMut<Board>> Drop for Deferred<B> {
     fn drop(&mut self) {
-        self.board.deferring = false;
-        self.board.settle();
+        let board = self.board.borrow_mut();
+        board.deferring = false;
+        board.settle();
     }
 }

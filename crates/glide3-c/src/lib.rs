@@ -49,7 +49,9 @@
 
 use glide::consts::*;
 use glide::{BoardInfo, Glide, GlideState, TexInfo, VertexLayout};
-use sst1_board::{AccuracyProfile, Board, BoardConfig, BufferKind, Method, Reference, VectorIsa};
+use sst1_board::{
+    AccuracyProfile, Board, BoardConfig, BufferKind, Deferred, Method, Reference, VectorIsa,
+};
 use sst1_regs::RegisterBus;
 use sst1_trace::{DumpBuffer, Recorder, TraceWriter};
 use std::borrow::Cow;
@@ -70,8 +72,11 @@ pub type FxBool = c_int;
 pub type ErrorFn = Option<unsafe extern "C" fn(*const c_char, FxBool)>;
 
 /// The emulated board, shared by the Glide context (which writes it through the bus)
-/// and the C layer (which reads it for PNG output).
-type SharedBoard = Rc<RefCell<Board>>;
+/// and the C layer (which reads it for PNG output). Its small triangles are shaded on a
+/// render thread behind the writes (`sst1_board::Deferred`, with more than one render
+/// thread); the C layer reaches the board through [`Deferred::board`], which draws them
+/// first.
+type SharedBoard = Rc<RefCell<Deferred<Board>>>;
 
 /// The `sst1_trace` recorder wrapping the board, streaming into the trace file; shared so
 /// the C layer can add dump points and finish the file at shutdown.
@@ -467,7 +472,8 @@ fn save_board_state(ctx: &Ctx, path: &std::path::Path) {
         .recording
         .as_ref()
         .map(|r| r.recorder.borrow().log().ops_written());
-    let board = ctx.board.borrow();
+    let mut board = ctx.board.borrow_mut();
+    let board = board.board();
     let bytes = match ops {
         Some(n) => board.save_state_after(n),
         None => board.save_state(),
@@ -481,6 +487,7 @@ fn save_board_state(ctx: &Ctx, path: &std::path::Path) {
 /// is refused is said on stderr and the board stays as it is.
 fn load_board_state(ctx: &Ctx, path: &std::path::Path) {
     let mut board = ctx.board.borrow_mut();
+    let board = board.board();
     let limit = sst1_board::state::max_state_len(board.config()) as u64;
     let loaded = sst1_trace::read_file_bounded(path, limit)
         .map_err(|e| e.to_string())
@@ -519,13 +526,13 @@ fn after_swap(ctx: &mut Ctx) {
         }
     }
     if let Some(w) = &ctx.window {
-        w.show(&ctx.board.borrow());
+        w.show(ctx.board.borrow_mut().board());
     }
     let Some((path, swaps)) = ctx.png.clone() else {
         return;
     };
     match swaps {
-        None => save_png(&ctx.board.borrow(), &path),
+        None => save_png(ctx.board.borrow_mut().board(), &path),
         Some(list) if list.contains(&n) => {
             let out = if list.len() > 1 {
                 match path.rfind('.') {
@@ -535,7 +542,7 @@ fn after_swap(ctx: &mut Ctx) {
             } else {
                 path
             };
-            save_png(&ctx.board.borrow(), &out);
+            save_png(ctx.board.borrow_mut().board(), &out);
         }
         Some(_) => {}
     }
@@ -590,7 +597,7 @@ pub extern "C" fn grGlideInit() {
             board.set_method(draw_method());
             board.set_threads(render_threads());
             board.set_vector_isa(vector_isa());
-            let board = Rc::new(RefCell::new(board));
+            let board = Rc::new(RefCell::new(Deferred::new(board)));
             let recording = Recording::from_env(&board, cfg);
             let bus = match &recording {
                 Some(r) => Bus::Recorded(r.recorder.clone()),

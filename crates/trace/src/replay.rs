@@ -193,7 +193,7 @@ pub enum ReplayError {
 
 /// [`step`] in a run of writes that may queue small triangles for a render thread
 /// ([`Board::deferred`]): a write is queued behind them, anything else waits for them.
-fn step_in(run: &mut Deferred<'_>, op: &TraceOp) -> Option<Dump> {
+fn step_in(run: &mut Deferred<&mut Board>, op: &TraceOp) -> Option<Dump> {
     match op {
         TraceOp::Write { addr, value } => {
             run.write32(*addr, *value);
