@@ -37,7 +37,7 @@
 use crate::aa::{AA_LINES, AA_POINTS, AA_TRIANGLES};
 use crate::consts::*;
 use crate::hw::{tmu_chip, PACKER_FIX};
-use crate::x87::Ext;
+use crate::x87::{self, Ext};
 use sst1_regs::addr::*;
 use sst1_regs::{AlphaLocalSelect, FbzColorPath, FbzMode, FogMode, FogZa};
 use std::borrow::Cow;
@@ -185,49 +185,6 @@ fn sort_key(f: f32) -> i32 {
 /// coordinates); `.to_f32()` of it is the snapped coordinate.
 fn biased(c: f32) -> Ext {
     Ext::from_f64(f64::from(c)).add(Ext::from_f64(f64::from(SNAP_BIAS)))
-}
-
-/// `1.0f / area` computed on the x87 and stored to a `float` (ties rounded twice,
-/// as the FPU does).
-fn x87_recip(area: f32) -> f32 {
-    match Ext::from_f64(1.0).div(Ext::from_f64(f64::from(area))) {
-        Some(q) if area.is_finite() => q.to_f32(),
-        _ => 1.0 / area,
-    }
-}
-
-/// `a - b` computed on the x87 and stored to a `float` variable (IEEE `f64` for
-/// non-finite inputs).
-fn e_f32(a: f32, b: f32) -> f32 {
-    if a.is_finite() && b.is_finite() {
-        Ext::from_f64(f64::from(a))
-            .sub(Ext::from_f64(f64::from(b)))
-            .to_f32()
-    } else {
-        (f64::from(a) - f64::from(b)) as f32
-    }
-}
-
-/// `(u0 - u1) * su - (w0 - w1) * sw` as 3dfx's build computes one setup gradient:
-/// the parameter differences `dpAB`, `dpBC` are `float` variables in `_trisetup`
-/// (gxdraw.c), so each is rounded to a `float` (from the x87 difference); the two
-/// products and their difference stay in x87 extended precision and the result is
-/// rounded once more, when stored to its register. Infinities and NaN in the
-/// inputs follow IEEE arithmetic instead.
-/// Source of the rounding of the differences: the glide-sdk trace test08 (table fog
-/// on W, `1/20 - 1/2000` needs more than 24 bits), pinned by tests/fog_trace.rs.
-fn x87_gradient(u: (f32, f32), su: f32, w: (f32, f32), sw: f32) -> f32 {
-    let all = [u.0, u.1, su, w.0, w.1, sw];
-    if all.iter().all(|v| v.is_finite()) {
-        let e = |v: f32| Ext::from_f64(f64::from(v));
-        let du = e(e_f32(u.0, u.1));
-        let dw = e(e_f32(w.0, w.1));
-        du.mul(e(su)).sub(dw.mul(e(sw))).to_f32()
-    } else {
-        let f = f64::from;
-        let (du, dw) = (e_f32(u.0, u.1), e_f32(w.0, w.1));
-        (f(du) * f(su) - f(dw) * f(sw)) as f32
-    }
 }
 
 impl crate::Glide {
@@ -529,7 +486,7 @@ impl crate::Glide {
             return -1;
         }
         self.flush_state();
-        let ooa = x87_recip(area);
+        let ooa = x87::reciprocal(area);
         self.hw.wf(F_VERTEX_AX, xa.to_f32());
         self.hw.wf(F_VERTEX_AY, ya.to_f32());
         self.hw.wf(F_VERTEX_BX, xb.to_f32());
@@ -552,9 +509,9 @@ impl crate::Glide {
             };
             let (pb, pc) = (value(fb, e), value(fc, e));
             self.hw
-                .wf(reg + DPDX, x87_gradient((pa, pb), dy_bc, (pb, pc), dy_ab));
+                .wf(reg + DPDX, x87::gradient((pa, pb), dy_bc, (pb, pc), dy_ab));
             self.hw
-                .wf(reg + DPDY, x87_gradient((pb, pc), dx_ab, (pa, pb), dx_bc));
+                .wf(reg + DPDY, x87::gradient((pb, pc), dx_ab, (pa, pb), dx_bc));
         }
         self.hw.wf(F_TRIANGLE_CMD, area);
         self.stats.triangles_drawn += 1;
@@ -743,7 +700,7 @@ impl crate::Glide {
             // `dp = pb - pa` is stored to a float variable, then `dp * m` is rounded
             // once (gdraw.c `_grDrawLineStrip`). test02's lines match with or without
             // the rounding of `dp`; it follows the source and test08's triangles.
-            let dp = e_f32(value(b, e), pa);
+            let dp = x87::difference(value(b, e), pa);
             let dp = (f64::from(dp) * f64::from(m)) as f32;
             if x_major {
                 self.hw.wf(reg + DPDX, dp);

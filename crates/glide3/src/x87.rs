@@ -192,7 +192,15 @@ impl Ext {
         if low > half || (low == half && top & 1 == 1) {
             q += 1;
         }
-        let v = q as f64 * 2f64.powi(self.e + 40);
+        let k = self.e + 40;
+        // 2^k built from its bits where it is a normal f64 (as powi gives it, without
+        // the call).
+        let scale = if (-1022..=1023).contains(&k) {
+            f64::from_bits(((k + 1023) as u64) << 52)
+        } else {
+            2f64.powi(k)
+        };
+        let v = q as f64 * scale;
         (if self.neg { -v } else { v }) as f32
     }
 
@@ -205,6 +213,102 @@ impl Ext {
             return u8::MAX;
         }
         (self.m >> (-self.e) as u32).min(255) as u8
+    }
+}
+
+/// `1.0f / area` computed on the x87 and stored to a `float`.
+///
+/// Fast path: the `f32` quotient. An extended (64-bit) quotient of two `float`s rounded
+/// again to 24 bits is the correctly rounded one, because 64 >= 2 * 24 + 2 (double
+/// rounding is innocuous for +, -, *, / when the first precision p' >= 2p + 2: S. A.
+/// Figueroa, "When is double rounding innocuous?", SIGNUM Newsletter 30(3), 1995).
+/// Where the quotient is not a normal `f32` the extended model answers
+/// ([`reciprocal_ext`]: its subnormal rounding is [`Ext::to_f32`]'s).
+#[inline]
+pub(crate) fn reciprocal(area: f32) -> f32 {
+    let q = 1.0 / area;
+    if q.is_normal() {
+        q
+    } else {
+        reciprocal_ext(area)
+    }
+}
+
+/// [`reciprocal`] in the extended model (ties rounded twice, as the FPU does).
+fn reciprocal_ext(area: f32) -> f32 {
+    match Ext::from_f64(1.0).div(Ext::from_f64(f64::from(area))) {
+        Some(q) if area.is_finite() => q.to_f32(),
+        _ => 1.0 / area,
+    }
+}
+
+/// `a - b` computed on the x87 and stored to a `float` variable: the `f32` difference.
+/// For finite inputs the extended difference rounded to 24 bits is the correctly rounded
+/// one (Figueroa, see [`reciprocal`]), and a difference in the subnormal range is exact;
+/// for infinities and NaN both are IEEE arithmetic. Test
+/// `difference_is_the_extended_model` checks it against [`difference_ext`].
+#[inline]
+pub(crate) fn difference(a: f32, b: f32) -> f32 {
+    a - b
+}
+
+/// [`difference`] in the extended model (IEEE `f64` for non-finite inputs).
+fn difference_ext(a: f32, b: f32) -> f32 {
+    if a.is_finite() && b.is_finite() {
+        Ext::from_f64(f64::from(a))
+            .sub(Ext::from_f64(f64::from(b)))
+            .to_f32()
+    } else {
+        (f64::from(a) - f64::from(b)) as f32
+    }
+}
+
+/// `(u0 - u1) * su - (w0 - w1) * sw` as 3dfx's build computes one setup gradient:
+/// the parameter differences `dpAB`, `dpBC` are `float` variables in `_trisetup`
+/// (gxdraw.c), so each is rounded to a `float` (from the x87 difference); the two
+/// products and their difference stay in x87 extended precision and the result is
+/// rounded once more, when stored to its register. Infinities and NaN in the
+/// inputs follow IEEE arithmetic instead.
+/// Source of the rounding of the differences: the glide-sdk trace test08 (table fog
+/// on W, `1/20 - 1/2000` needs more than 24 bits), pinned by tests/fog_trace.rs.
+///
+/// Fast path, in `f64`: each product of two `float`s is exact (48 bits), so the
+/// extended difference is `x = p - q` rounded to 64 bits, and the `f64` difference `s`
+/// is `x` rounded to 53 bits. Rounding to 24 bits is constant between two neighbouring
+/// midpoints of the `float` grid (25-bit numbers, so on `s`'s 53-bit grid). Unless `s` is
+/// one, the nearest midpoint is at least one `f64` ulp from `s`, while `x` is within half
+/// an ulp of `s` and its 64-bit rounding within 2^-11 ulp of `x`: all three round to the
+/// same `float`. A midpoint `s`, or a result outside the normal `float` range, takes the
+/// extended model ([`gradient_ext`]); test `gradient_is_the_extended_model` builds such
+/// midpoints on purpose.
+#[inline]
+pub(crate) fn gradient(u: (f32, f32), su: f32, w: (f32, f32), sw: f32) -> f32 {
+    let (du, dw) = (difference(u.0, u.1), difference(w.0, w.1));
+    let s = f64::from(du) * f64::from(su) - f64::from(dw) * f64::from(sw);
+    let bits = s.to_bits();
+    // The biased f64 exponent of a normal f32 magnitude below 2^127: 1023 - 126 ..= 1023 + 126.
+    let exp = (bits >> 52) & 0x7ff;
+    // The 29 bits below a float's 24: exactly half is a midpoint of the float grid.
+    let below = bits & ((1 << 29) - 1);
+    if (897..=1149).contains(&exp) && below != 1 << 28 {
+        s as f32
+    } else {
+        gradient_ext(u, su, w, sw)
+    }
+}
+
+/// [`gradient`] in the extended model.
+fn gradient_ext(u: (f32, f32), su: f32, w: (f32, f32), sw: f32) -> f32 {
+    let all = [u.0, u.1, su, w.0, w.1, sw];
+    if all.iter().all(|v| v.is_finite()) {
+        let e = |v: f32| Ext::from_f64(f64::from(v));
+        let du = e(difference_ext(u.0, u.1));
+        let dw = e(difference_ext(w.0, w.1));
+        du.mul(e(su)).sub(dw.mul(e(sw))).to_f32()
+    } else {
+        let f = f64::from;
+        let (du, dw) = (difference_ext(u.0, u.1), difference_ext(w.0, w.1));
+        (f(du) * f(su) - f(dw) * f(sw)) as f32
     }
 }
 
@@ -237,6 +341,116 @@ mod tests {
         assert!(nz.is_zero() && !one.is_zero());
         assert_eq!(Ext::from_f64(1e39).to_f32(), f32::INFINITY);
         assert_eq!(Ext::from_f64(-1e39).to_f32(), f32::NEG_INFINITY);
+    }
+
+    /// xorshift64*: inputs for the fast paths' checks.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            self.0.wrapping_mul(0x2545_f491_4f6c_dd1d)
+        }
+
+        /// Any f32 bit pattern (NaN and infinities included) one time in four; a value
+        /// of a random sign, 24 random bits and an exponent near 0 otherwise.
+        fn float(&mut self) -> f32 {
+            let r = self.next();
+            if r & 3 == 0 {
+                f32::from_bits((r >> 32) as u32)
+            } else {
+                let m = 1.0 + ((r >> 8) & 0x7f_ffff) as f32 / (1 << 23) as f32;
+                let e = ((r >> 40) % 48) as i32 - 24;
+                let v = m * 2f32.powi(e);
+                if r & 4 != 0 {
+                    -v
+                } else {
+                    v
+                }
+            }
+        }
+    }
+
+    fn same(a: f32, b: f32) -> bool {
+        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+    }
+
+    #[test]
+    fn difference_is_the_extended_model() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        for _ in 0..200_000 {
+            let (a, b) = (rng.float(), rng.float());
+            // Near neighbours too: differences that cancel.
+            let c = f32::from_bits(a.to_bits().wrapping_add((rng.next() % 5) as u32));
+            for (x, y) in [(a, b), (a, c), (c, a)] {
+                assert!(
+                    same(difference(x, y), difference_ext(x, y)),
+                    "{x:e} - {y:e}"
+                );
+            }
+        }
+        for (x, y) in [
+            (0.0f32, -0.0f32),
+            (-0.0, 0.0),
+            (-0.0, -0.0),
+            (f32::MAX, -f32::MAX),
+        ] {
+            assert!(
+                same(difference(x, y), difference_ext(x, y)),
+                "{x:e} - {y:e}"
+            );
+        }
+    }
+
+    #[test]
+    fn reciprocal_is_the_extended_model() {
+        let mut rng = Rng(0x0fed_cba9_8765_4321);
+        for i in 0..200_000u32 {
+            let a = rng.float();
+            // Every exponent, subnormal areas and quotients included.
+            let b = f32::from_bits((rng.next() >> 33) as u32 | (i & 1) << 31);
+            for x in [a, b] {
+                assert!(same(reciprocal(x), reciprocal_ext(x)), "1 / {x:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn gradient_is_the_extended_model() {
+        let mut rng = Rng(0x5555_aaaa_3333_cccc);
+        let mut took_model = 0;
+        for _ in 0..200_000 {
+            let u = (rng.float(), rng.float());
+            let w = (rng.float(), rng.float());
+            let (su, sw) = (rng.float(), rng.float());
+            assert!(
+                same(gradient(u, su, w, sw), gradient_ext(u, su, w, sw)),
+                "{u:?} {su:e} {w:?} {sw:e}"
+            );
+        }
+        // du * su exactly on a midpoint of the float grid (an odd 25-bit product), minus
+        // a second product from far below the f64 precision to just inside it.
+        for _ in 0..20_000 {
+            let m = ((1u32 << 23) + (rng.next() % 2_796_202) as u32) | 1;
+            let e = (rng.next() % 60) as i32 - 30;
+            let du = m as f32 * 2f32.powi(e - 23);
+            let p = f64::from(du) * 1.5;
+            let below = (rng.next() % 80) as i32 + 10;
+            let dw = (p * 2f64.powi(-below)) as f32;
+            let sign: f32 = if rng.next() & 1 == 0 { 1.0 } else { -1.0 };
+            let (u, w) = ((du, 0.0), (dw, 0.0));
+            let fast = gradient(u, 1.5, w, sign);
+            assert!(
+                same(fast, gradient_ext(u, 1.5, w, sign)),
+                "{du:e} * 1.5 - {dw:e} * {sign}"
+            );
+            let s = p - f64::from(dw) * f64::from(sign);
+            took_model += usize::from(s.to_bits() & ((1 << 29) - 1) == 1 << 28);
+        }
+        // Both sides of the check are reached.
+        assert!((1_000..19_000).contains(&took_model), "{took_model}");
     }
 
     #[test]
