@@ -548,11 +548,8 @@ fn after_swap(ctx: &mut Ctx) {
     }
 }
 
-/// Read one C vertex: enough words for every enabled layout parameter.
-unsafe fn vertex(layout: &VertexLayout, p: *const c_void) -> Vec<f32> {
-    if p.is_null() {
-        return Vec::new();
-    }
+/// Words of a C vertex: enough for every enabled layout parameter.
+fn vertex_words(layout: &VertexLayout) -> usize {
     let mut end = layout.xy.offset + 8;
     for (prm, size) in [
         (layout.z, 4),
@@ -573,12 +570,69 @@ unsafe fn vertex(layout: &VertexLayout, p: *const c_void) -> Vec<f32> {
             end = end.max(prm.offset + size);
         }
     }
-    let n = (end.max(0) as usize).div_ceil(4);
+    (end.max(0) as usize).div_ceil(4)
+}
+
+/// Read one C vertex: enough words for every enabled layout parameter.
+unsafe fn vertex(layout: &VertexLayout, p: *const c_void) -> Vec<f32> {
+    if p.is_null() {
+        return Vec::new();
+    }
     let src = p as *const f32;
     // SAFETY: the Glide contract: the vertex holds every parameter of the layout.
-    (0..n)
+    (0..vertex_words(layout))
         .map(|i| unsafe { src.add(i).read_unaligned() })
         .collect()
+}
+
+/// Words of a vertex that [`Vertices`] keeps on the stack: every parameter of a layout
+/// packed from offset 0 takes 20.
+const INLINE_WORDS: usize = 32;
+
+/// A primitive's C vertices read once (a point's, a line's or a triangle's): on the
+/// stack when each has at most [`INLINE_WORDS`] words, else in one allocation.
+struct Vertices<const N: usize> {
+    inline: [[f32; INLINE_WORDS]; N],
+    heap: Vec<f32>,
+    words: usize,
+}
+
+impl<const N: usize> Vertices<N> {
+    /// # Safety
+    /// Each pointer is a Glide vertex (not null) holding every parameter of `layout`.
+    unsafe fn read(layout: &VertexLayout, at: [*const c_void; N]) -> Self {
+        let words = vertex_words(layout);
+        let mut v = Self {
+            inline: [[0.0; INLINE_WORDS]; N],
+            heap: Vec::new(),
+            words,
+        };
+        if words > INLINE_WORDS {
+            v.heap.reserve_exact(words * N);
+        }
+        for (k, p) in at.into_iter().enumerate() {
+            let src = p as *const f32;
+            for i in 0..words {
+                // SAFETY: the caller's contract.
+                let w = unsafe { src.add(i).read_unaligned() };
+                if words > INLINE_WORDS {
+                    v.heap.push(w);
+                } else {
+                    v.inline[k][i] = w;
+                }
+            }
+        }
+        v
+    }
+
+    /// Vertex `k`'s words.
+    fn get(&self, k: usize) -> &[f32] {
+        if self.words > INLINE_WORDS {
+            &self.heap[k * self.words..(k + 1) * self.words]
+        } else {
+            &self.inline[k][..self.words]
+        }
+    }
 }
 
 // ----- init and windows ------------------------------------------------------------
@@ -1183,8 +1237,8 @@ pub unsafe extern "C" fn grDrawPoint(p: *const c_void) {
         with(|c| {
             let l = c.glide.get_vertex_layout();
             // SAFETY: Glide vertex pointer.
-            let v = unsafe { vertex(&l, p) };
-            c.glide.draw_point(&v);
+            let v = unsafe { Vertices::read(&l, [p]) };
+            c.glide.draw_point(v.get(0));
         });
     })
 }
@@ -1199,8 +1253,8 @@ pub unsafe extern "C" fn grDrawLine(a: *const c_void, b: *const c_void) {
         with(|c| {
             let l = c.glide.get_vertex_layout();
             // SAFETY: Glide vertex pointers.
-            let (a, b) = unsafe { (vertex(&l, a), vertex(&l, b)) };
-            c.glide.draw_line(&a, &b);
+            let v = unsafe { Vertices::read(&l, [a, b]) };
+            c.glide.draw_line(v.get(0), v.get(1));
         });
     })
 }
@@ -1214,9 +1268,9 @@ pub unsafe extern "C" fn grDrawTriangle(a: *const c_void, b: *const c_void, cc: 
         }
         with(|c| {
             let l = c.glide.get_vertex_layout();
-            // SAFETY: Glide vertex pointers.
-            let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
-            c.glide.draw_triangle(&a, &b, &cc);
+            // SAFETY: Glide vertex pointers (checked non-null).
+            let v = unsafe { Vertices::read(&l, [a, b, cc]) };
+            c.glide.draw_triangle(v.get(0), v.get(1), v.get(2));
         });
     })
 }
@@ -1239,9 +1293,9 @@ pub unsafe extern "C" fn grAADrawTriangle(
         with(|c| {
             let l = c.glide.get_vertex_layout();
             // SAFETY: Glide vertex pointers (checked non-null).
-            let (a, b, cc) = unsafe { (vertex(&l, a), vertex(&l, b), vertex(&l, cc)) };
+            let v = unsafe { Vertices::read(&l, [a, b, cc]) };
             c.glide
-                .aa_draw_triangle(&a, &b, &cc, ab != 0, bc != 0, ca != 0);
+                .aa_draw_triangle(v.get(0), v.get(1), v.get(2), ab != 0, bc != 0, ca != 0);
         });
     })
 }
@@ -2587,6 +2641,31 @@ mod tests {
                 "grDepthBufferFunction: invalid compare function",
             ]
         );
+    }
+
+    /// A primitive's vertices read at once equal each vertex read on its own, on the
+    /// stack and past it (offsets up to `grVertexLayout`'s largest).
+    #[test]
+    fn vertices_read_together_as_one_by_one() {
+        let words: Vec<f32> = (0..3 * 300).map(|i| i as f32 * 0.5).collect();
+        let at = |k: usize| words[k * 300..].as_ptr() as *const c_void;
+        for (rgb_at, st1_at) in [(8, 20), (8, 116), (4, 124), (600, 12), (1012, 1016)] {
+            let mut l = VertexLayout::default();
+            l.xy.enabled = true;
+            (l.rgb.offset, l.rgb.enabled) = (rgb_at, true);
+            (l.st[1].offset, l.st[1].enabled) = (st1_at, true);
+            // SAFETY: every vertex has 300 words, more than any layout reads.
+            let (three, one) = unsafe {
+                (
+                    Vertices::read(&l, [at(0), at(1), at(2)]),
+                    [0, 1, 2].map(|k| vertex(&l, at(k))),
+                )
+            };
+            for k in 0..3 {
+                assert_eq!(three.get(k), &one[k][..], "rgb at {rgb_at}, vertex {k}");
+            }
+            assert_eq!(one[0].len(), vertex_words(&l));
+        }
     }
 
     /// 3dfx's RLE16 loop, off-by-one and sign extension included (gu.c).

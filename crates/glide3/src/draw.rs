@@ -184,7 +184,7 @@ fn sort_key(f: f32) -> i32 {
 /// `c + SNAP_BIAS` as the x87 holds it (a 64-bit significand: exact for window
 /// coordinates); `.to_f32()` of it is the snapped coordinate.
 fn biased(c: f32) -> Ext {
-    Ext::from_f64(f64::from(c)).add(Ext::from_f64(f64::from(SNAP_BIAS)))
+    Ext::plus_snap_bias(c)
 }
 
 impl crate::Glide {

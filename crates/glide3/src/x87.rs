@@ -20,6 +20,14 @@ pub(crate) struct Ext {
     e: i32,
 }
 
+/// `2^k` outside the normal `f64` exponents. Out of line: inline, the compiler computes
+/// `powi` before the test of [`Ext::to_f32`] that almost never needs it.
+#[cold]
+#[inline(never)]
+fn far_power_of_two(k: i32) -> f64 {
+    2f64.powi(k)
+}
+
 impl Ext {
     const ZERO: Ext = Ext {
         neg: false,
@@ -101,6 +109,24 @@ impl Ext {
         if b.m == 0 {
             return a;
         }
+        if a.e == b.e {
+            // Equal exponents (the differences of snapped coordinates): a sum of 65 bits
+            // at most, or a difference exact in 64.
+            if a.neg == b.neg {
+                return Ext::round(a.neg, u128::from(a.m) + u128::from(b.m), a.e, false);
+            }
+            // |a| >= |b|: the difference is exact; shifted up to normal.
+            let d = a.m - b.m;
+            if d == 0 {
+                return Ext::ZERO;
+            }
+            let z = d.leading_zeros();
+            return Ext {
+                neg: a.neg,
+                m: d << z,
+                e: a.e - z as i32,
+            };
+        }
         // a's significand at bits 125..62; b aligned below it.
         let ua = u128::from(a.m) << 62;
         let d = (a.e - b.e) as u32;
@@ -120,6 +146,24 @@ impl Ext {
             Ext::round(a.neg, ((ua - ub) << 1) - 1, e - 1, true)
         } else {
             Ext::round(a.neg, ua - ub, e, false)
+        }
+    }
+
+    /// `c + 3 * 2^18` (Glide's snap bias), rounded: as `from_f64(c).add(from_f64(3 *
+    /// 2^18))`. For a multiple of 2^-44 below 2^18 in magnitude (every window coordinate
+    /// from 2^-21 up, and 0) the sum is exact: its significand is `3 * 2^62 + c * 2^44`, in
+    /// `2^63..2^64`, at exponent -44, found without the general addition.
+    pub(crate) fn plus_snap_bias(c: f32) -> Ext {
+        // c * 2^44, exact (a power of two).
+        let t = f64::from(c) * 17_592_186_044_416.0;
+        if t.abs() < 4_611_686_018_427_387_904.0 && t == t.trunc() {
+            Ext {
+                neg: false,
+                m: ((3u64 << 62) as i64 + t as i64) as u64,
+                e: -44,
+            }
+        } else {
+            Ext::from_f64(f64::from(c)).add(Ext::from_f64(f64::from(3u32 << 18)))
         }
     }
 
@@ -198,7 +242,7 @@ impl Ext {
         let scale = if (-1022..=1023).contains(&k) {
             f64::from_bits(((k + 1023) as u64) << 52)
         } else {
-            2f64.powi(k)
+            far_power_of_two(k)
         };
         let v = q as f64 * scale;
         (if self.neg { -v } else { v }) as f32
@@ -451,6 +495,59 @@ mod tests {
         }
         // Both sides of the check are reached.
         assert!((1_000..19_000).contains(&took_model), "{took_model}");
+    }
+
+    /// The general addition without its equal-exponent branch, as it was.
+    fn add_general(x: Ext, y: Ext) -> Ext {
+        if x.m == 0 || y.m == 0 || x.e != y.e {
+            return x.add(y);
+        }
+        // Move one exponent apart by scaling both significands' exponents through u128.
+        let (a, b) = if x.mag_lt(y) { (y, x) } else { (x, y) };
+        let (ua, ub) = (u128::from(a.m) << 62, u128::from(b.m) << 62);
+        let e = a.e - 62;
+        if a.neg == b.neg {
+            Ext::round(a.neg, ua + ub, e, false)
+        } else if ua == ub {
+            Ext::ZERO
+        } else {
+            Ext::round(a.neg, ua - ub, e, false)
+        }
+    }
+
+    #[test]
+    fn equal_exponents_add_as_the_general_addition() {
+        let mut rng = Rng(0x7777_1111_9999_2222);
+        for _ in 0..200_000 {
+            let e = (rng.next() % 200) as i32 - 100;
+            let mut x = Ext::from_f64(rng.float() as f64);
+            let mut y = Ext::from_f64(rng.float() as f64);
+            if x.m == 0 || y.m == 0 {
+                continue;
+            }
+            (x.e, y.e) = (e, e);
+            if rng.next() & 1 == 0 {
+                y.m = x.m.wrapping_add(rng.next() % 7) | 1 << 63;
+            }
+            assert_eq!(x.add(y), add_general(x, y), "{x:?} + {y:?}");
+            assert_eq!(x.sub(y), add_general(x, Ext { neg: !y.neg, ..y }));
+        }
+    }
+
+    #[test]
+    fn snap_bias_as_the_general_addition() {
+        let mut rng = Rng(0x2468_ace0_1357_9bdf);
+        let bias = Ext::from_f64(f64::from(3u32 << 18));
+        for i in 0..200_000u32 {
+            let c = match i % 3 {
+                0 => rng.float(),
+                1 => (rng.next() % 2_000_000) as f32 / 1024.0 - 900.0,
+                _ => f32::from_bits((rng.next() >> 32) as u32),
+            };
+            // A non-finite c counts as +0 in both.
+            let want = Ext::from_f64(f64::from(c)).add(bias);
+            assert_eq!(Ext::plus_snap_bias(c), want, "{c:e}");
+        }
     }
 
     #[test]
