@@ -2661,8 +2661,8 @@ mod tests {
                     [0, 1, 2].map(|k| vertex(&l, at(k))),
                 )
             };
-            for k in 0..3 {
-                assert_eq!(three.get(k), &one[k][..], "rgb at {rgb_at}, vertex {k}");
+            for (k, v) in one.iter().enumerate() {
+                assert_eq!(three.get(k), &v[..], "rgb at {rgb_at}, vertex {k}");
             }
             assert_eq!(one[0].len(), vertex_words(&l));
         }
