@@ -28,7 +28,8 @@
 //! * `VOODOO_METHOD`: how the board draws (`voodoo replay --method`): `exact` (the
 //!   default), `reference`, or an approximation that trades exactness for speed,
 //!   `nearest`, `lod-per-chunk`, `float-divide` or `fastest` (docs/methods.md).
-//! * `VOODOO_THREADS=N`: render threads for large triangles (default: the
+//! * `VOODOO_THREADS=N`: render threads, for large triangles in bands of rows and small
+//!   ones behind the writes (`sst1_board::Deferred`) (default: the
 //!   machine's cores; `voodoo replay --threads`). The pixels are the same for every N.
 //! * `VOODOO_ISA`: the copy of the span kernels, `baseline`, `avx2` or `avx512`, capped
 //!   by what the CPU has (default: the best it has; `voodoo replay --isa`). The pixels
