@@ -184,6 +184,8 @@ impl Board {
     /// test of their route).
     #[inline(never)]
     fn after_video_write(&mut self, offset: u32, value: u32) {
+        // The timing model charges what is queued before its video changes.
+        self.settle();
         match offset {
             addr::DAC_DATA => {
                 self.dac.write(value);
@@ -258,14 +260,10 @@ impl Board {
                 pixelfx::draw_untextured::<M, Vec<Tmu>>
             };
             let job = self.fbi.triangle_job::<M, _>(dest, draw, tex_adjust);
-            // Timed here, in order with the writes, from a walk that only counts.
-            let counts = if self.timing_on {
-                self.fbi.walk_counts::<M>()
-            } else {
-                (0, 0)
-            };
-            self.defer_triangle(job);
-            counts
+            // Timed when the render thread gives the memory back, from its walk's counts.
+            let work = self.triangle_work(cp, texturing, 0, 0);
+            self.defer_triangle(job, work);
+            return;
         } else {
             let before = self.fbi.stats;
             if texturing {
@@ -286,17 +284,29 @@ impl Board {
         if let Some(saved) = saved {
             saved.restore(&mut self.fbi, &mut self.tmus);
         }
-        if !self.timing_on {
-            return;
+        if self.timing_on {
+            let work = self.triangle_work(cp, texturing, pixels, spans);
+            self.timing.triangle(work);
         }
+    }
+
+    /// What the timing model charges for the triangle command in the registers that
+    /// walked `pixels` pixels in `spans` rows.
+    fn triangle_work(
+        &self,
+        cp: sst1_regs::FbzColorPath,
+        textured: bool,
+        pixels: u64,
+        spans: u64,
+    ) -> TriangleWork {
         let am = sst1_regs::AlphaMode(self.fbi.reg(addr::ALPHA_MODE));
-        self.timing.triangle(TriangleWork {
+        TriangleWork {
             pixels,
             spans,
             subpixel: cp.param_adjust(),
-            textured: texturing,
+            textured,
             read_modify_write: self.fbi.fbz_mode().enable_depthbuffer() || am.alpha_blend_enable(),
-        });
+        }
     }
 
     /// Run a FASTFILL command (spec 5.23) and charge its time (out of line, as
@@ -336,7 +346,7 @@ impl Board {
     /// A bus write, run by model `M` (the board's).
     fn write32_as<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
         if self.timing_on {
-            self.timing.write();
+            self.time_write();
         }
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
@@ -402,6 +412,7 @@ impl RegisterBus for Board {
     }
 
     fn host_wait(&mut self, cycles: u64) {
+        self.settle();
         if self.timing_on {
             self.timing.host_wait(cycles);
         }

@@ -10,13 +10,15 @@
 //! behind the triangles before them ([`tmu_register`], [`tmu_texture`]).
 
 use std::borrow::BorrowMut;
+use std::collections::VecDeque;
 
 use pixelfx::pipeline::DrawState;
-use pixelfx::{Fbi, TriangleJob};
+use pixelfx::{Fbi, TriangleJob, WalkCounts};
 use sst1_chain::Chain;
 use texelfx::Tmu;
 
 use crate::model::ChipModel;
+use crate::timing::{Timing, TriangleWork};
 use crate::Board;
 
 /// A TMU register write, `[chips, offset, value]`: to each TMU the chip mask selects
@@ -61,6 +63,49 @@ pub(crate) fn draw_textured<M: ChipModel>(
     twin.shade_job::<M, _>(st, &mut Chain::<M>::new(tmus));
 }
 
+/// The timing model's events while the render thread holds the memory: the bus writes
+/// and the queued triangles, in order. Each triangle is charged with the counts of the
+/// walk that shaded it, as the render thread returns them ([`TimingLog::charge`]), so
+/// that no triangle is walked twice; every access that reads the timing model (a read,
+/// a swap, a fill, a host wait, a video register) settles first, which charges the
+/// rest, so it sees what drawing each triangle at its command gives. It holds the
+/// triangles in flight, a few thousand at most (`pixelfx::deferred`'s batches).
+#[derive(Default)]
+pub(crate) struct TimingLog {
+    /// Per queued triangle not yet charged, the writes before it (since the one before)
+    /// and its work but for the counts.
+    triangles: VecDeque<(u32, TriangleWork)>,
+    /// Writes since the last queued triangle.
+    writes: u32,
+}
+
+impl TimingLog {
+    fn triangle(&mut self, work: TriangleWork) {
+        self.triangles
+            .push_back((std::mem::take(&mut self.writes), work));
+    }
+
+    /// Charge the first triangles to `timing`, in order, with the walk `counts` the
+    /// render thread returned for them (one each), each after the writes before it.
+    fn charge(&mut self, timing: &mut Timing, counts: &[WalkCounts]) {
+        debug_assert!(counts.len() <= self.triangles.len());
+        for (c, (writes, work)) in counts.iter().zip(self.triangles.drain(..counts.len())) {
+            timing.writes(writes);
+            timing.triangle(TriangleWork {
+                pixels: c.pixels,
+                spans: c.spans,
+                ..work
+            });
+        }
+    }
+
+    /// Charge the writes after the last triangle (every triangle charged).
+    fn charge_writes(&mut self, timing: &mut Timing) {
+        debug_assert!(self.triangles.is_empty());
+        timing.writes(std::mem::take(&mut self.writes));
+    }
+}
+
 /// A run of bus writes on a board (see the module documentation), which it borrows
 /// (`B` = `&mut Board`, [`Board::deferred`]) or owns (`B` = [`Board`],
 /// [`Deferred::new`]: a Glide library's board, written one call at a time for a whole
@@ -102,17 +147,50 @@ impl Board {
         };
         if let Err(e) = render.settle(&mut self.fbi, &mut self.tmus) {
             self.render_failed(e);
+            return;
+        }
+        while let Some(counts) = render.counted() {
+            if self.timing_on {
+                self.timing_log.charge(&mut self.timing, &counts);
+            }
+        }
+        if self.timing_on {
+            self.timing_log.charge_writes(&mut self.timing);
         }
     }
 
     /// Queue a triangle for the render thread ([`Board::start_render`] said it runs),
-    /// lending it the memory and the TMUs if it does not hold them.
-    pub(crate) fn defer_triangle(&mut self, job: TriangleJob<Vec<Tmu>>) {
+    /// lending it the memory and the TMUs if it does not hold them; the timing model
+    /// charges `work` with the walk's counts when the memory comes back.
+    pub(crate) fn defer_triangle(&mut self, job: TriangleJob<Vec<Tmu>>, work: TriangleWork) {
         let Some(render) = self.render.as_mut() else {
             return;
         };
-        if let Err(e) = render.push(&mut self.fbi, &mut self.tmus, job) {
-            self.render_failed(e);
+        let sent = match render.push(&mut self.fbi, &mut self.tmus, job) {
+            Ok(sent) => sent,
+            Err(e) => return self.render_failed(e),
+        };
+        if self.timing_on {
+            self.timing_log.triangle(work);
+        }
+        if sent {
+            // The triangles shaded so far are charged as the writes go on, so that the
+            // log (and the counts' channel) holds only what is in flight.
+            while let Some(counts) = render.counted() {
+                if self.timing_on {
+                    self.timing_log.charge(&mut self.timing, &counts);
+                }
+            }
+        }
+    }
+
+    /// A bus write in the timing model: now, or after the triangles queued before it.
+    #[inline(always)]
+    pub(crate) fn time_write(&mut self) {
+        if self.render_lent() {
+            self.timing_log.writes += 1;
+        } else {
+            self.timing.write();
         }
     }
 
@@ -131,6 +209,7 @@ impl Board {
     #[cold]
     fn render_failed(&mut self, e: pixelfx::RenderThreadFailed) {
         self.render = None;
+        self.timing_log = TimingLog::default();
         if !std::thread::panicking() {
             panic!("{e}");
         }
@@ -200,7 +279,7 @@ impl<B: BorrowMut<Board>> sst1_regs::RegisterBus for Deferred<B> {
     }
 
     fn host_wait(&mut self, cycles: u64) {
-        // The timing model stays on this thread: nothing to settle.
+        // The board settles first: the timing model charges what is queued.
         self.board.borrow_mut().host_wait(cycles);
     }
 }

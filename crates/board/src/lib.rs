@@ -132,6 +132,9 @@ pub struct Board {
     /// Whether a triangle command may go to the render thread: only inside the writes of
     /// a [`Deferred`] run.
     deferring: bool,
+    /// The timing model's events while the render thread holds the memory, charged when
+    /// it gives it back.
+    timing_log: deferred::TimingLog,
 }
 
 impl Board {
@@ -154,6 +157,7 @@ impl Board {
             timing_on: true,
             render: None,
             deferring: false,
+            timing_log: deferred::TimingLog::default(),
         }
     }
 

@@ -232,6 +232,15 @@ impl TakeTimes {
         self.len += 1;
     }
 
+    /// Queues `n` more writes taken at the newest time (a queue that is not empty).
+    #[inline]
+    fn extend_newest(&mut self, n: usize) {
+        if let Some((_, count)) = self.runs.back_mut() {
+            *count += n;
+            self.len += n;
+        }
+    }
+
     /// Dequeues the oldest write and returns its time.
     #[inline]
     fn pop_front(&mut self) -> Option<u64> {
@@ -391,10 +400,7 @@ impl HostView {
             // and this write is taken at once. (What the general path below does, in a
             // few instructions: everything that looks at the queues drops what has been
             // taken first.)
-            self.fifo.clear();
-            self.swaps.clear();
-            self.in_memory = 0;
-            self.last_taken = self.now;
+            self.taken_at_once();
             return;
         }
         if self.joins_newest() {
@@ -403,6 +409,65 @@ impl HostView {
             return;
         }
         self.write_queued();
+    }
+
+    /// The queues emptied and the write just made taken now (the engine idle).
+    #[inline]
+    fn taken_at_once(&mut self) {
+        self.fifo.clear();
+        self.swaps.clear();
+        self.in_memory = 0;
+        self.last_taken = self.now;
+    }
+
+    /// `n` writes in a row, as `n` [`HostView::write`]s: one at a time while the engine
+    /// is busy, and those from the first that finds it idle on in one step (the engine
+    /// stays idle: writes do not move `engine_free`).
+    fn writes(&mut self, n: u32) {
+        let mut left = u64::from(n);
+        while left > 0 && self.engine_free > self.now + PCI_CLOCKS_PER_WRITE {
+            let joining = self.joining(left);
+            if joining > 0 {
+                // What `write` does for each of them: count it into the newest run.
+                self.now += joining * PCI_CLOCKS_PER_WRITE;
+                self.fifo.extend_newest(joining as usize);
+                self.last_taken = self.engine_free;
+                left -= joining;
+            } else {
+                self.write();
+                left -= 1;
+            }
+        }
+        if left > 0 {
+            self.now += left * PCI_CLOCKS_PER_WRITE;
+            self.taken_at_once();
+        }
+    }
+
+    /// How many of the next `left` writes, one after the other, each find the engine busy
+    /// and only join the newest queued writes ([`HostView::joins_newest`] after its
+    /// clock step). Each condition fails from some write on: the clock reaching the
+    /// engine's end or the oldest write's take time, the PCI FIFO or the memory FIFO's
+    /// low water mark filling.
+    fn joining(&self, left: u64) -> u64 {
+        if self.fifo.newest() != Some(self.engine_free) || !self.swaps.is_empty() {
+            return 0;
+        }
+        let Some(oldest) = self.fifo.oldest() else {
+            return 0;
+        };
+        // Write i (from 1) is at now + i * PCI_CLOCKS_PER_WRITE, which must stay below both.
+        let until = self.engine_free.min(oldest);
+        let by_clock = until.saturating_sub(self.now + 1) / PCI_CLOCKS_PER_WRITE;
+        // Write i leaves 64 - (in_pci + i) free entries: more than 0, and more than the
+        // low water mark with the memory FIFO on.
+        let floor = if self.memory_fifo.entries == 0 {
+            0
+        } else {
+            self.memory_fifo.low_water_mark
+        };
+        let by_room = PCI_FIFO_ENTRIES.saturating_sub(self.in_pci() + floor + 1) as u64;
+        left.min(by_clock).min(by_room)
     }
 
     /// Whether a write now, with the engine busy, only joins the newest queued writes,
@@ -533,6 +598,12 @@ impl Timing {
     pub(crate) fn write(&mut self) {
         self.pending_bus += PCI_CLOCKS_PER_WRITE;
         self.host.write();
+    }
+
+    /// `n` 32-bit writes crossed the bus, one after the other: as `n` [`Timing::write`]s.
+    pub(crate) fn writes(&mut self, n: u32) {
+        self.pending_bus += u64::from(n) * PCI_CLOCKS_PER_WRITE;
+        self.host.writes(n);
     }
 
     /// A read crossed the bus.
@@ -899,6 +970,56 @@ mod tests {
         let expanded: Vec<u64> = runs.clone().into();
         assert_eq!(expanded, Vec::from(list));
         assert_eq!(TakeTimes::from(expanded), runs);
+    }
+
+    #[test]
+    fn writes_in_a_row_are_single_writes() {
+        // The same pseudo-random commands on two models, the writes between them made
+        // one at a time on one and as one run on the other: the same state after every
+        // run, with many runs that begin with the engine busy and many that end with it
+        // idle.
+        for memory in [0, 100] {
+            let mut a = Timing::default();
+            let mut b = Timing::default();
+            for t in [&mut a, &mut b] {
+                t.set_memory_fifo(MemoryFifo {
+                    entries: memory,
+                    low_water_mark: 23,
+                });
+            }
+            let mut seed = 0x0bad_cafe_f00d_1234u64;
+            let (mut busy, mut idle) = (0u32, 0u32);
+            for step in 0..50_000 {
+                seed ^= seed << 13;
+                seed ^= seed >> 7;
+                seed ^= seed << 17;
+                let n = (seed % 90) as u32;
+                busy += u32::from(b.host.engine_free > b.host.now + PCI_CLOCKS_PER_WRITE);
+                for _ in 0..n {
+                    a.write();
+                }
+                b.writes(n);
+                idle += u32::from(n > 0 && b.host.engine_free <= b.host.now);
+                assert_eq!(a.host, b.host, "step {step}");
+                assert_eq!(a.pending_bus, b.pending_bus, "step {step}");
+                for t in [&mut a, &mut b] {
+                    match seed >> 20 & 255 {
+                        0..=199 => t.triangle(TriangleWork {
+                            pixels: seed >> 40 & 0x1f,
+                            spans: seed >> 50 & 0x1f,
+                            textured: seed & 1 << 30 != 0,
+                            ..TriangleWork::default()
+                        }),
+                        200..=229 => t.fastfill(seed >> 32 & 0xfff, 4),
+                        230 => t.swap(0),
+                        _ => t.read(),
+                    }
+                }
+            }
+            // Runs that start behind a busy engine, and runs that end with it idle.
+            assert!(busy > 10_000 && idle > 10_000, "{busy} {idle}");
+            assert_eq!(a.cycles(), b.cycles());
+        }
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! likely to break: every kind of access that reads or writes what the render thread
 //! holds comes right after blended triangles it is still shading (an LFB write under the
 //! next triangles and an LFB read of the last one, a FASTFILL, a new vertical timing and a
-//! swap on the retrace, a fog-table write
+//! swap on the retrace, host time passing and a new horizontal timing, a fog-table write
 //! with fog on, `nopCMD` clearing the counters, a counter read, a new buffer layout, a
 //! large triangle on the bands), and textured rounds on two TMUs change the TMUs between
 //! their triangles (random `textureMode`, `tLOD` and base per TMU, texture-memory and
@@ -20,11 +20,13 @@ use common::Rng;
 const LFB: u32 = 0x40_0000;
 const TEX: u32 = 0x80_0000;
 
-/// One access of the stream: a write, or a read whose value is kept.
+/// One access of the stream: a write, a read whose value is kept, or host time
+/// passing (graphics clocks).
 #[derive(Clone, Copy)]
 enum Access {
     Write(u32, u32),
     Read(u32),
+    Wait(u64),
 }
 
 /// A triangle with its three vertices `size` pixels around `(x, y)` (12.4), random
@@ -193,8 +195,18 @@ fn stream(seed: u64) -> Vec<Access> {
                 out.push(Access::Write(addr::FBI_INIT2, init2.0));
             }
             7 => {
-                // The float triangle command.
+                // The float triangle command; host time passing while triangles are
+                // queued, a new horizontal timing, then the status and the scan line.
                 triangle(&mut rng, &mut out, at, 10, addr::F_TRIANGLE_CMD);
+                out.push(Access::Wait(u64::from(rng.below(20_000))));
+                triangle(&mut rng, &mut out, at, 10, addr::TRIANGLE_CMD);
+                out.push(Access::Write(
+                    addr::H_SYNC,
+                    (0x0320 + rng.below(64)) << 16 | 0x60,
+                ));
+                triangle(&mut rng, &mut out, at, 10, addr::TRIANGLE_CMD);
+                out.push(Access::Read(addr::STATUS));
+                out.push(Access::Read(addr::V_RETRACE));
             }
             _ => triangle(
                 &mut rng,
@@ -230,6 +242,7 @@ fn replay(stream: &[Access], threads: usize) -> (Vec<u16>, Vec<u32>, String, u64
             match access {
                 Access::Write(a, v) => run.write32(a, v),
                 Access::Read(a) => reads.push(run.board().read32(a)),
+                Access::Wait(cycles) => run.host_wait(cycles),
             }
         }
     }

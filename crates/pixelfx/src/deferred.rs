@@ -1,5 +1,6 @@
 //! Small triangles shaded on a render thread of their own, while the calling thread goes
-//! on with the trace, the register writes and the timing model after them.
+//! on with the trace and the register writes after them. Each batch's walk counts
+//! ([`WalkCounts`]) come back as it is shaded, for the board's timing model.
 //!
 //! A triangle too small for bands of rows ([`crate::raster`]) is a few hundred cycles of
 //! walk and shading after a few hundred of register writes; on one thread they take turns.
@@ -22,7 +23,7 @@
 //! thread waits while it is full.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
-use std::sync::mpsc::{self, Receiver, SyncSender, TryRecvError};
+use std::sync::mpsc::{self, Receiver, Sender, SyncSender, TryRecvError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -107,20 +108,34 @@ impl<C> Batch<C> {
         self.writes.clear();
     }
 
-    /// Run the batch on `twin` and `chips`, in order.
-    fn run(&self, twin: &mut Fbi, chips: &mut C) {
+    /// Run the batch on `twin` and `chips`, in order, each triangle's walk counts onto
+    /// `counts`.
+    fn run(&self, twin: &mut Fbi, chips: &mut C, counts: &mut Vec<WalkCounts>) {
         let mut writes = self.writes.iter().peekable();
         for (i, job) in self.triangles.iter().enumerate() {
             while let Some(w) = writes.next_if(|w| w.before as usize == i) {
                 (w.apply)(chips, w.args);
             }
             twin.params = job.params;
+            let before = (twin.stats.pixels_in, twin.stats.spans);
             (job.draw)(twin, chips, &job.st, job.tex_adjust);
+            counts.push(WalkCounts {
+                pixels: twin.stats.pixels_in.wrapping_sub(before.0),
+                spans: twin.stats.spans.wrapping_sub(before.1),
+            });
         }
         for w in writes {
             (w.apply)(chips, w.args);
         }
     }
+}
+
+/// What a triangle's walk counted: its pixels (`fbiPixelsIn`) and rows, what the
+/// board's timing model charges for it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct WalkCounts {
+    pub pixels: u64,
+    pub spans: u64,
 }
 
 /// What the calling thread lends: the FBI's part, and the chips.
@@ -172,6 +187,8 @@ pub struct RenderThread<C: Send + 'static> {
     back: Receiver<Returned<C>>,
     /// Emptied batches coming back to be filled again (no allocation per batch).
     spent: Receiver<Batch<C>>,
+    /// Each batch's walk counts, in order, once it is shaded.
+    counted: Receiver<Vec<WalkCounts>>,
     batch: Batch<C>,
     lent: bool,
     thread: Option<JoinHandle<()>>,
@@ -183,14 +200,18 @@ impl<C: Send + Default + 'static> RenderThread<C> {
         let (to, from) = mpsc::sync_channel(IN_FLIGHT);
         let (give, back) = mpsc::sync_channel(1);
         let (spend, spent) = mpsc::sync_channel(IN_FLIGHT + 2);
+        // Unbounded, but the calling thread takes them at every batch it sends and at
+        // every settle: at most the batches in flight wait there.
+        let (count, counted) = mpsc::channel();
         let thread = std::thread::Builder::new()
             .name("voodoo-render".into())
-            .spawn(move || serve(from, give, spend))
+            .spawn(move || serve(from, give, spend, count))
             .ok()?;
         Some(Self {
             to: Some(to),
             back,
             spent,
+            counted,
             batch: Batch::new(),
             lent: false,
             thread: Some(thread),
@@ -203,15 +224,24 @@ impl<C: Send + Default + 'static> RenderThread<C> {
         self.lent
     }
 
+    /// The walk counts of the next batch of triangles shaded, in the order they were
+    /// queued, if it is done ([`RenderThread::push`] says when to ask; after a
+    /// [`RenderThread::settle`], every one is there).
+    pub fn counted(&self) -> Option<Vec<WalkCounts>> {
+        self.counted.try_recv().ok()
+    }
+
     /// Queue `job`, lending `fbi`'s memory and `chips` first if the render thread does
-    /// not hold them (`chips` is left empty until [`RenderThread::settle`]). An error
-    /// only where the render thread is gone (a bug; see [`RenderThread::settle`]).
+    /// not hold them (`chips` is left empty until [`RenderThread::settle`]); `true` when
+    /// a batch went to the render thread (the time to collect what is
+    /// [`RenderThread::counted`]). An error only where the render thread is gone (a
+    /// bug; see [`RenderThread::settle`]).
     pub fn push(
         &mut self,
         fbi: &mut Fbi,
         chips: &mut C,
         job: TriangleJob<C>,
-    ) -> Result<(), RenderThreadFailed> {
+    ) -> Result<bool, RenderThreadFailed> {
         if !self.lent {
             let lent = Box::new(Lent {
                 fbi: fbi.lend(),
@@ -223,8 +253,9 @@ impl<C: Send + Default + 'static> RenderThread<C> {
         self.batch.triangles.push(job);
         if self.batch.triangles.len() == BATCH {
             self.flush()?;
+            return Ok(true);
         }
-        Ok(())
+        Ok(false)
     }
 
     /// Queue a write to the lent chips, behind the triangles queued before it; only
@@ -321,6 +352,7 @@ fn serve<C: Default>(
     from: Receiver<Message<C>>,
     give: SyncSender<Returned<C>>,
     spend: SyncSender<Batch<C>>,
+    count: Sender<Vec<WalkCounts>>,
 ) {
     let mut twin: Option<Fbi> = None;
     let mut chips = C::default();
@@ -349,8 +381,15 @@ fn serve<C: Default>(
             }
             Message::Jobs(mut jobs) => {
                 if let (Some(t), false) = (twin.as_mut(), panicked) {
-                    let shaded = catch_unwind(AssertUnwindSafe(|| jobs.run(t, &mut chips)));
+                    let mut counts = Vec::with_capacity(jobs.triangles.len());
+                    let shaded =
+                        catch_unwind(AssertUnwindSafe(|| jobs.run(t, &mut chips, &mut counts)));
                     panicked = shaded.is_err();
+                    // Sent before the memory at the settle: the calling thread has every
+                    // batch's counts once it has the memory back.
+                    if !panicked && count.send(counts).is_err() {
+                        return;
+                    }
                 }
                 jobs.clear();
                 let _ = spend.try_send(jobs);

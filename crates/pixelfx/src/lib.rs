@@ -30,7 +30,9 @@ pub mod stats;
 pub mod stipple;
 pub mod watch;
 
-pub use deferred::{draw_untextured, DrawJob, RenderThread, RenderThreadFailed, TriangleJob};
+pub use deferred::{
+    draw_untextured, DrawJob, RenderThread, RenderThreadFailed, TriangleJob, WalkCounts,
+};
 pub use fbi::{Command, Fbi, PathCounts};
 pub use isa::VectorIsa;
 pub use model::{PixelModel, RuntimeProfile};

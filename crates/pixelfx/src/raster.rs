@@ -135,17 +135,6 @@ impl Fbi {
         }
     }
 
-    /// The pixels and spans the walk of the triangle in the parameter registers counts
-    /// (`fbiPixelsIn` and [`Stats::spans`]: every span of the edge walk, clipped or not),
-    /// without shading it: what [`Fbi::draw_triangle`] adds to them when `fbzMode`
-    /// selects a colour buffer.
-    pub fn walk_counts<M: PixelModel>(&self) -> (u64, u64) {
-        let profile = M::pixel(&self.profile());
-        setup::spans(&self.params, profile.edge_rounding).fold((0, 0), |(pixels, spans), s| {
-            (pixels + (s.stop - s.start) as u64, spans + 1)
-        })
-    }
-
     /// Force the reference path (every mode register read at run time for every pixel)
     /// instead of the span kernels, and fills pixel by pixel instead of by rows. Both
     /// give identical pixels and counters; the switch
