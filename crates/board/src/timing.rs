@@ -933,9 +933,7 @@ mod tests {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
         let mut time = 0u64;
         for step in 0..100_000 {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
+            xorshift(&mut seed);
             match seed % 16 {
                 0..=8 => {
                     time += (seed >> 8) % 3 * ((seed >> 16) % 50);
@@ -972,6 +970,27 @@ mod tests {
         assert_eq!(TakeTimes::from(expanded), runs);
     }
 
+    /// Two timing models in their power-on state with a memory FIFO of `entries`
+    /// (0: off), for tests that drive both the same way.
+    fn model_pair(entries: usize) -> (Timing, Timing) {
+        let mut pair = (Timing::default(), Timing::default());
+        for t in [&mut pair.0, &mut pair.1] {
+            t.set_memory_fifo(MemoryFifo {
+                entries,
+                low_water_mark: 23,
+            });
+        }
+        pair
+    }
+
+    /// The next value of a xorshift64 sequence (Marsaglia 13, 7, 17).
+    fn xorshift(seed: &mut u64) -> u64 {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        *seed
+    }
+
     #[test]
     fn writes_in_a_row_are_single_writes() {
         // The same pseudo-random commands on two models, the writes between them made
@@ -979,20 +998,11 @@ mod tests {
         // run, with many runs that begin with the engine busy and many that end with it
         // idle.
         for memory in [0, 100] {
-            let mut a = Timing::default();
-            let mut b = Timing::default();
-            for t in [&mut a, &mut b] {
-                t.set_memory_fifo(MemoryFifo {
-                    entries: memory,
-                    low_water_mark: 23,
-                });
-            }
+            let (mut a, mut b) = model_pair(memory);
             let mut seed = 0x0bad_cafe_f00d_1234u64;
             let (mut busy, mut idle) = (0u32, 0u32);
             for step in 0..50_000 {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
+                xorshift(&mut seed);
                 let n = (seed % 90) as u32;
                 busy += u32::from(b.host.engine_free > b.host.now + PCI_CLOCKS_PER_WRITE);
                 for _ in 0..n {
@@ -1029,20 +1039,11 @@ mod tests {
         // the general path for writes: the same state once settled, every status read
         // the same, and both shortcuts taken many times.
         for memory in [0, 100] {
-            let mut a = Timing::default();
-            let mut b = Timing::default();
-            for t in [&mut a, &mut b] {
-                t.set_memory_fifo(MemoryFifo {
-                    entries: memory,
-                    low_water_mark: 23,
-                });
-            }
+            let (mut a, mut b) = model_pair(memory);
             let mut seed = 0x1234_5678_9abc_def0u64;
             let (mut idle, mut joined) = (0u32, 0u32);
             for step in 0..200_000 {
-                seed ^= seed << 13;
-                seed ^= seed >> 7;
-                seed ^= seed << 17;
+                xorshift(&mut seed);
                 for (t, general) in [(&mut a, false), (&mut b, true)] {
                     let op = seed % 100;
                     // A write, and for a command the command it carries (as the board
