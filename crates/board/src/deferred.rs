@@ -16,7 +16,7 @@ use std::borrow::BorrowMut;
 use std::collections::VecDeque;
 
 use pixelfx::pipeline::DrawState;
-use pixelfx::{Fbi, TriangleJob, WalkCounts};
+use pixelfx::{Fbi, RenderThread, TriangleJob, WalkCounts};
 use sst1_chain::Chain;
 use texelfx::Tmu;
 
@@ -68,7 +68,7 @@ pub(crate) fn draw_textured<M: ChipModel>(
 
 /// The timing model's events while the render thread holds the memory: the bus writes
 /// and the queued triangles, in order. Each triangle is charged with the counts of the
-/// walk that shaded it, as the render thread returns them ([`TimingLog::charge`]), so
+/// walk that shaded it, as the render thread returns them ([`TimingLog::charge_counted`]), so
 /// that no triangle is walked twice; every access that reads the timing model (a read,
 /// a swap, a fill, a host wait, a video register) settles first, which charges the
 /// rest, so it sees what drawing each triangle at its command gives. It holds the
@@ -88,8 +88,23 @@ impl TimingLog {
             .push_back((std::mem::take(&mut self.writes), work));
     }
 
-    /// Charge the first triangles to `timing`, in order, with the walk `counts` the
-    /// render thread returned for them (one each), each after the writes before it.
+    /// Charge the first triangles to `timing`, in order, with the walk counts the
+    /// render thread has returned for them so far (one each), each after the writes
+    /// before it; with the timing model off (`None`), only take the counts. Gives
+    /// `timing` back.
+    fn charge_counted<'t>(
+        &mut self,
+        render: &RenderThread<Vec<Tmu>>,
+        mut timing: Option<&'t mut Timing>,
+    ) -> Option<&'t mut Timing> {
+        while let Some(counts) = render.counted() {
+            if let Some(timing) = timing.as_deref_mut() {
+                self.charge(timing, &counts);
+            }
+        }
+        timing
+    }
+
     fn charge(&mut self, timing: &mut Timing, counts: &[WalkCounts]) {
         debug_assert!(counts.len() <= self.triangles.len());
         for (c, (writes, work)) in counts.iter().zip(self.triangles.drain(..counts.len())) {
@@ -152,13 +167,10 @@ impl Board {
             self.render_failed(e);
             return;
         }
-        while let Some(counts) = render.counted() {
-            if self.timing_on {
-                self.timing_log.charge(&mut self.timing, &counts);
-            }
-        }
-        if self.timing_on {
-            self.timing_log.charge_writes(&mut self.timing);
+        // Every batch's counts are there once the memory is back.
+        let timing = self.timing_on.then_some(&mut self.timing);
+        if let Some(timing) = self.timing_log.charge_counted(render, timing) {
+            self.timing_log.charge_writes(timing);
         }
     }
 
@@ -179,11 +191,8 @@ impl Board {
         if sent {
             // The triangles shaded so far are charged as the writes go on, so that the
             // log (and the counts' channel) holds only what is in flight.
-            while let Some(counts) = render.counted() {
-                if self.timing_on {
-                    self.timing_log.charge(&mut self.timing, &counts);
-                }
-            }
+            let timing = self.timing_on.then_some(&mut self.timing);
+            self.timing_log.charge_counted(render, timing);
         }
     }
 

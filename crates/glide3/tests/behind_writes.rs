@@ -28,6 +28,10 @@ impl Rng {
         self.next() % n
     }
 
+    fn pick(&mut self, items: &[u32]) -> u32 {
+        items[self.below(items.len() as u32) as usize]
+    }
+
     fn unit(&mut self) -> f32 {
         self.below(1 << 16) as f32 / 65536.0
     }
@@ -196,12 +200,6 @@ fn scene(g: &mut Glide, seed: u64) -> Vec<u32> {
     }
     g.buffer_swap(0);
     read
-}
-
-impl Rng {
-    fn pick(&mut self, items: &[u32]) -> u32 {
-        items[self.below(items.len() as u32) as usize]
-    }
 }
 
 fn outcome(board: &mut Board, read: Vec<u32>) -> Outcome {
