@@ -180,8 +180,16 @@ pub(crate) trait Place<const L: usize> {
     ) -> [bool; L];
     /// Write `values[i]` to the word of `buffer` of every live lane `i` that has one.
     fn store(&self, ram: &mut [u16], buffer: Buffer, alive: &[bool; L], values: &[u16; L]);
-    /// `values` packed to RGB565 with the dither `kind`.
-    fn rgb565(&self, dither: &Dither, kind: DitherKind, rgb: [&[i32; L]; 3]) -> [u16; L];
+    /// `rgb` packed to RGB565 with the dither `kind` and written to the colour word of
+    /// every live lane that has one.
+    fn store_rgb565(
+        &self,
+        ram: &mut [u16],
+        dither: &Dither,
+        kind: DitherKind,
+        rgb: [&[i32; L]; 3],
+        alive: &[bool; L],
+    );
 }
 
 /// The lanes of one chunk of one span: lane `i` is column `at.x0 + i`.
@@ -293,11 +301,20 @@ impl<const L: usize> Place<L> for RowPlace<'_> {
     }
 
     #[inline(always)]
-    fn rgb565(&self, dither: &Dither, kind: DitherKind, rgb: [&[i32; L]; 3]) -> [u16; L] {
-        let mut packed = [0u16; L];
-        let (x0, prow) = (self.at.x0 as u32, self.at.prow as u32);
-        dither.rgb565_row(kind, x0, prow, rgb.map(|c| &c[..]), &mut packed);
-        packed
+    fn store_rgb565(
+        &self,
+        ram: &mut [u16],
+        dither: &Dither,
+        kind: DitherKind,
+        rgb: [&[i32; L]; 3],
+        alive: &[bool; L],
+    ) {
+        // Packed straight into the row's words (`Dither::rgb565_row_into`).
+        let w = self.words.0;
+        let dst = &mut ram[w.first..w.first + (w.hi - w.lo)];
+        let x0 = (self.at.x0 + w.lo as i32) as u32;
+        let rgb = rgb.map(|c| &c[w.lo..w.hi]);
+        dither.rgb565_row_into(kind, x0, self.at.prow as u32, rgb, &alive[w.lo..w.hi], dst);
     }
 }
 
@@ -474,16 +491,24 @@ impl Place<PACK> for Packed {
     }
 
     #[inline(always)]
-    fn rgb565(&self, dither: &Dither, kind: DitherKind, rgb: [&[i32; PACK]; 3]) -> [u16; PACK] {
+    fn store_rgb565(
+        &self,
+        ram: &mut [u16],
+        dither: &Dither,
+        kind: DitherKind,
+        rgb: [&[i32; PACK]; 3],
+        alive: &[bool; PACK],
+    ) {
         let entries = self.dither_entries(dither, kind);
         let mut packed = [0u16; PACK];
         dither.rgb565_lanes(kind, &entries, rgb.map(|c| &c[..]), &mut packed);
-        packed
+        self.store(ram, Buffer::Colour, alive, &packed);
     }
 }
 
 /// The three 8-bit channels and alpha of a colour for every lane.
 #[derive(Clone, Copy)]
+#[repr(transparent)]
 struct ColourLanes<const L: usize> {
     c: [[i32; L]; 4],
 }
@@ -606,10 +631,26 @@ impl TriangleConsts {
 
 /// One channel's iterated colour, clamped to 8 bits, in every lane.
 #[inline(always)]
-fn clamp_colour_lanes<const L: usize>(out: &mut [i32; L], raw: [i32; L], clamp: IteratorClamp) {
+fn clamp_colour_lanes<const L: usize>(
+    out: &mut [core::mem::MaybeUninit<i32>; L],
+    raw: [i32; L],
+    clamp: IteratorClamp,
+) {
     for (v, r) in out.iter_mut().zip(raw) {
-        *v = clamp.colour(r) as i32;
+        v.write(clamp.colour(r) as i32);
     }
+}
+
+/// The four channels of a [`ColourLanes`] not yet written, to be filled lane by lane:
+/// no zero fill first (zeroing a 64-lane chunk's four channels, 16 vector stores, cost
+/// about a tenth of a Gouraud pixel's time, as the store queue filled).
+#[inline(always)]
+fn uninit_channels<const L: usize>(
+    store: &mut core::mem::MaybeUninit<ColourLanes<L>>,
+) -> &mut [[core::mem::MaybeUninit<i32>; L]; 4] {
+    // SAFETY: `ColourLanes<L>` is `[[i32; L]; 4]` in a struct of one field, so the
+    // pointer is one to that array; an array of `MaybeUninit` may hold anything.
+    unsafe { &mut *(store.as_mut_ptr() as *mut [[core::mem::MaybeUninit<i32>; L]; 4]) }
 }
 
 /// The pixels of the next chunk of a span with `left` pixels left.
@@ -955,8 +996,8 @@ impl Shader<'_> {
         let am = st.alpha_mode;
         let fog_mode = st.fog_mode;
         let zero = &consts.zero;
-        let mut alive = [false; L];
-        alive[..n].fill(true);
+        // A comparison per lane, not `fill` of the first `n` (a call to memset).
+        let mut alive: [bool; L] = lanes(|i| i < n);
 
         // --- stipple ---
         if mode.enable_stipple() {
@@ -1030,12 +1071,17 @@ impl Shader<'_> {
         // scatter per lane, and arrays returned by value were copied with memcpy. (A
         // function, not a closure: a closure the compiler leaves as a call is compiled
         // for the baseline target, outside the vector kernel.)
-        let mut iterated = ColourLanes::<L>::ZERO;
-        let [r, g, b, a] = &mut iterated.c;
-        clamp_colour_lanes(r, place.colour(0), clamp);
-        clamp_colour_lanes(g, place.colour(1), clamp);
-        clamp_colour_lanes(b, place.colour(2), clamp);
-        clamp_colour_lanes(a, place.colour(3), clamp);
+        let mut iterated_store = core::mem::MaybeUninit::<ColourLanes<L>>::uninit();
+        let iterated: &ColourLanes<L> = {
+            let lanes = uninit_channels(&mut iterated_store);
+            let [r, g, b, a] = lanes;
+            clamp_colour_lanes(r, place.colour(0), clamp);
+            clamp_colour_lanes(g, place.colour(1), clamp);
+            clamp_colour_lanes(b, place.colour(2), clamp);
+            clamp_colour_lanes(a, place.colour(3), clamp);
+            // SAFETY: the four calls above wrote every lane of every channel.
+            unsafe { iterated_store.assume_init_ref() }
+        };
         let (color0, color1) = (&consts.color0, &consts.color1);
         let other_rgb: [&[i32; L]; 3] = match cp.cc_rgbselect() {
             RgbSelect::IteratedRgb => [&iterated.c[0], &iterated.c[1], &iterated.c[2]],
@@ -1181,8 +1227,7 @@ impl Shader<'_> {
         // --- write ---
         if mode.rgb_buffer_mask() {
             let rgb = [&out.c[0], &out.c[1], &out.c[2]];
-            let packed = place.rgb565(self.dither, st.dither, rgb);
-            place.store(mem.colour(), Buffer::Colour, &alive, &packed);
+            place.store_rgb565(mem.colour(), self.dither, st.dither, rgb, &alive);
         }
         if aux_enabled(mode, profile.aux_write) {
             let planes = mode.enable_alpha_planes();
