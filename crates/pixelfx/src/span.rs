@@ -506,9 +506,10 @@ impl Place<PACK> for Packed {
     }
 }
 
-/// The three 8-bit channels and alpha of a colour for every lane.
+/// The three 8-bit channels and alpha of a colour for every lane, on a cache line of
+/// their own (vector stores that straddle two lines cost two).
 #[derive(Clone, Copy)]
-#[repr(transparent)]
+#[repr(C, align(64))]
 struct ColourLanes<const L: usize> {
     c: [[i32; L]; 4],
 }
@@ -648,8 +649,9 @@ fn clamp_colour_lanes<const L: usize>(
 fn uninit_channels<const L: usize>(
     store: &mut core::mem::MaybeUninit<ColourLanes<L>>,
 ) -> &mut [[core::mem::MaybeUninit<i32>; L]; 4] {
-    // SAFETY: `ColourLanes<L>` is `[[i32; L]; 4]` in a struct of one field, so the
-    // pointer is one to that array; an array of `MaybeUninit` may hold anything.
+    // SAFETY: `ColourLanes<L>` is `[[i32; L]; 4]` in a `repr(C)` struct of one field
+    // (at offset 0), so the pointer is one to that array; an array of `MaybeUninit`
+    // may hold anything.
     unsafe { &mut *(store.as_mut_ptr() as *mut [[core::mem::MaybeUninit<i32>; L]; 4]) }
 }
 
@@ -771,7 +773,7 @@ fn chosen<T>(v: T) -> T {
 /// made by the caller.
 #[inline(always)]
 fn combine_channel<const L: usize>(
-    out: &mut [i32; L],
+    out: &mut [core::mem::MaybeUninit<i32>; L],
     other: &[i32; L],
     sub: &[i32; L],
     factor: &[i32; L],
@@ -788,18 +790,25 @@ fn combine_channel<const L: usize>(
     if is_zero(other) && is_zero(sub) {
         // Nothing to scale (`GR_COMBINE_FUNCTION_LOCAL` and its kin): the sum alone.
         for i in 0..L {
-            out[i] = add[i].clamp(0, 255) ^ invert;
+            out[i].write(add[i].clamp(0, 255) ^ invert);
         }
     } else if is_zero(factor) && xor == 0xff {
         // A factor of 0 reversed is 256: the difference passes unscaled
         // (`(d * 256) >> 8 == d`).
-        for i in 0..L {
-            out[i] = (other[i] - sub[i] + add[i]).clamp(0, 255) ^ invert;
+        if is_zero(sub) && is_zero(add) {
+            // `c_other` alone (`GR_COMBINE_FUNCTION_SCALE_OTHER` by one).
+            for i in 0..L {
+                out[i].write(other[i].clamp(0, 255) ^ invert);
+            }
+        } else {
+            for i in 0..L {
+                out[i].write((other[i] - sub[i] + add[i]).clamp(0, 255) ^ invert);
+            }
         }
     } else {
         for i in 0..L {
             let v = ((other[i] - sub[i]) * ((factor[i] ^ xor) + 1)) >> 8;
-            out[i] = (v + add[i]).clamp(0, 255) ^ invert;
+            out[i].write((v + add[i]).clamp(0, 255) ^ invert);
         }
     }
 }
@@ -1162,6 +1171,7 @@ impl Shader<'_> {
         };
 
         // --- colour and alpha combine ---
+        let mut combined_store = core::mem::MaybeUninit::uninit();
         let combined = combine_units(
             cp,
             other_rgb,
@@ -1170,6 +1180,7 @@ impl Shader<'_> {
             local_a,
             &texel.c[3],
             zero,
+            &mut combined_store,
         );
         if alpha_test && test_combined {
             let fails = alpha_fails(func, &combined.c[3], reference);
@@ -1199,7 +1210,7 @@ impl Shader<'_> {
             fogged_store = f;
             &fogged_store
         } else {
-            &combined
+            combined
         };
 
         // --- alpha blend ---
@@ -1318,7 +1329,7 @@ pub(crate) fn aux_enabled(mode: FbzMode, aux_write: AuxWrite) -> bool {
 /// their selections (spec 5.16) made once.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn combine_units<const L: usize>(
+fn combine_units<'o, const L: usize>(
     cp: FbzColorPath,
     other_rgb: [&[i32; L]; 3],
     other_a: &[i32; L],
@@ -1326,8 +1337,9 @@ fn combine_units<const L: usize>(
     local_a: &[i32; L],
     texel_a: &[i32; L],
     zero: &[i32; L],
-) -> ColourLanes<L> {
-    let mut out = ColourLanes::ZERO;
+    store: &'o mut core::mem::MaybeUninit<ColourLanes<L>>,
+) -> &'o ColourLanes<L> {
+    let out = uninit_channels(store);
     // --- colour ---
     let xor = if cp.cc_reverse_blend() { 0 } else { 0xff };
     let invert = if cp.cc_invert_output() { 0xff } else { 0 };
@@ -1355,7 +1367,7 @@ fn combine_units<const L: usize>(
             (false, true) => local_a,
             _ => zero,
         };
-        combine_channel(&mut out.c[c], other, sub, factor, add, xor, invert, zero);
+        combine_channel(&mut out[c], other, sub, factor, add, xor, invert, zero);
     }
 
     // --- alpha ---
@@ -1375,6 +1387,7 @@ fn combine_units<const L: usize>(
     } else {
         zero
     };
-    combine_channel(&mut out.c[3], other, sub, factor, add, xor, invert, zero);
-    out
+    combine_channel(&mut out[3], other, sub, factor, add, xor, invert, zero);
+    // SAFETY: the four calls above wrote every lane of every channel.
+    unsafe { store.assume_init_ref() }
 }
