@@ -278,7 +278,10 @@ impl Dither {
             }
             return;
         }
-        let d: [i32; 4] = core::array::from_fn(|i| {
+        // In steps of a fixed width with the entries spread over it, as `rgb565_row`
+        // (indexed `i & 3` instead, the loop stayed scalar).
+        const STEP: usize = 16;
+        let d: [i32; STEP] = core::array::from_fn(|i| {
             i32::from(matrix_entry(
                 kind,
                 self.matrix_2x2,
@@ -286,12 +289,21 @@ impl Dither {
                 y,
             ))
         });
-        for i in 0..n {
-            put(
-                &mut dst[i],
-                dither_lane(r[i], g[i], b[i], d[i & 3]),
-                write[i],
-            );
+        let mut dst_steps = dst.chunks_exact_mut(STEP);
+        let mut src_steps = r
+            .chunks_exact(STEP)
+            .zip(g.chunks_exact(STEP))
+            .zip(b.chunks_exact(STEP))
+            .zip(write.chunks_exact(STEP));
+        for (o, (((r, g), b), w)) in (&mut dst_steps).zip(&mut src_steps) {
+            for i in 0..STEP {
+                put(&mut o[i], dither_lane(r[i], g[i], b[i], d[i]), w[i]);
+            }
+        }
+        let done = n - n % STEP;
+        for (i, o) in dst_steps.into_remainder().iter_mut().enumerate() {
+            let j = done + i;
+            put(o, dither_lane(r[j], g[j], b[j], d[i]), write[j]);
         }
     }
 
