@@ -17,7 +17,7 @@
 //! same in all three. The 2x2 matrix is disputed: see [`DitherMatrix2x2`].
 //!
 //! [`Dither`] precomputes one 256-entry table per channel width and matrix position,
-//! so converting a pixel is three table lookups; [`Dither::rgb565_row`] computes the
+//! so converting a pixel is three table lookups; [`Dither::rgb565_row_into`] computes the
 //! equations over lanes instead, which vectorises.
 
 /// The 4x4 ordered-dither matrix, `[y & 3][x & 3]`.
@@ -93,10 +93,10 @@ pub const fn dither_g(v: u8, d: u8) -> u8 {
     ((4 * v - (v >> 4) + (v >> 6) + d as u32) >> 4) as u8
 }
 
-/// Lanes of one step of [`Dither::rgb565_row`]: a multiple of the 4-column pattern.
-const ROW_LANES: usize = 8;
+/// Lanes of one step of [`Dither::rgb565_row_into`]: a multiple of the 4-column pattern.
+const ROW_LANES: usize = 16;
 
-/// One pixel of [`Dither::rgb565_row`] with dithering on: [`dither_rb`] and [`dither_g`]
+/// One pixel of [`Dither::rgb565_row_into`] with dithering on: [`dither_rb`] and [`dither_g`]
 /// on the low 8 bits of each channel, packed to RGB565, in lane-friendly `i32`
 /// arithmetic (every intermediate is below 2^11).
 #[inline(always)]
@@ -195,61 +195,16 @@ impl Dither {
         (r5 as u16) << 11 | (g6 as u16) << 5 | b5 as u16
     }
 
-    /// [`Dither::rgb565`] for a run of pixels on one row: pixel `i` is at `(x0 + i, y)`
-    /// with colour `(r[i], g[i], b[i])` (the low 8 bits of each count) and goes to
-    /// `out[i]`. The same values as one call per pixel: with dithering on, the equations
-    /// of the module documentation (from which the tables are built) over eight lanes at
-    /// a time, the row's matrix entries repeated every four pixels, so that the loop is
-    /// plain lane arithmetic the compiler vectorises instead of three table lookups per
-    /// pixel.
-    #[inline(always)]
-    pub fn rgb565_row(
-        &self,
-        kind: DitherKind,
-        x0: u32,
-        y: u32,
-        [r, g, b]: [&[i32]; 3],
-        out: &mut [u16],
-    ) {
-        let n = out.len().min(r.len()).min(g.len()).min(b.len());
-        let (out, r, g, b) = (&mut out[..n], &r[..n], &g[..n], &b[..n]);
-        if kind == DitherKind::Off {
-            truncate_lanes([r, g, b], out);
-            return;
-        }
-        // The entries for pixels x0 .. x0 + 8 (the pattern repeats every 4 columns).
-        let d: [i32; ROW_LANES] = core::array::from_fn(|i| {
-            i32::from(matrix_entry(
-                kind,
-                self.matrix_2x2,
-                x0.wrapping_add(i as u32),
-                y,
-            ))
-        });
-        let mut out_chunks = out.chunks_exact_mut(ROW_LANES);
-        let mut rgb_chunks = r
-            .chunks_exact(ROW_LANES)
-            .zip(g.chunks_exact(ROW_LANES))
-            .zip(b.chunks_exact(ROW_LANES));
-        for (o, ((r, g), b)) in (&mut out_chunks).zip(&mut rgb_chunks) {
-            let mut lanes = [0u16; ROW_LANES];
-            for i in 0..ROW_LANES {
-                lanes[i] = dither_lane(r[i], g[i], b[i], d[i]);
-            }
-            o.copy_from_slice(&lanes);
-        }
-        let done = n - n % ROW_LANES;
-        for (i, o) in out_chunks.into_remainder().iter_mut().enumerate() {
-            let j = done + i;
-            *o = dither_lane(r[j], g[j], b[j], d[i]);
-        }
-    }
-
-    /// [`Dither::rgb565_row`] written straight into the frame buffer: pixel `i` (at
-    /// `(x0 + i, y)`, colour `(r[i], g[i], b[i])`) replaces `dst[i]` where `write[i]`
-    /// holds, and `dst[i]` keeps its word elsewhere. One pass with no array of packed
-    /// values in between: a packed array written at one vector width and read back at
-    /// another stalled the store that followed it (measured on perf_gouraud_heavy).
+    /// [`Dither::rgb565`] for a run of pixels on one row, written straight into the
+    /// frame buffer: pixel `i` (at `(x0 + i, y)`, colour `(r[i], g[i], b[i])`, the low 8
+    /// bits of each counting) replaces `dst[i]` where `write[i]` holds, and `dst[i]` keeps
+    /// its word elsewhere. The same values as one call per pixel: with dithering on, the
+    /// equations of the module documentation (from which the tables are built) over
+    /// [`ROW_LANES`] lanes at a time, the row's matrix entries repeated every four
+    /// pixels, so that the loop is plain lane arithmetic the compiler vectorises instead
+    /// of three table lookups per pixel. One pass with no array of packed values in
+    /// between: a packed array written at one vector width and read back at another
+    /// stalled the store that followed it (measured on perf_gouraud_heavy).
     #[inline(always)]
     pub fn rgb565_row_into(
         &self,
@@ -278,9 +233,9 @@ impl Dither {
             }
             return;
         }
-        // In steps of a fixed width with the entries spread over it, as `rgb565_row`
-        // (indexed `i & 3` instead, the loop stayed scalar).
-        const STEP: usize = 16;
+        // In steps of a fixed width with the entries spread over it (indexed `i & 3`
+        // instead, the loop stayed scalar).
+        const STEP: usize = ROW_LANES;
         let d: [i32; STEP] = core::array::from_fn(|i| {
             i32::from(matrix_entry(
                 kind,
@@ -307,7 +262,7 @@ impl Dither {
         }
     }
 
-    /// [`Dither::rgb565_row`] for pixels that need not share a row: pixel `i` is
+    /// [`Dither::rgb565_row_into`] for pixels that need not share a row: pixel `i` is
     /// dithered with matrix entry `entries[i]` (what [`Dither::matrix_value`] gives at its
     /// position; ignored when dithering is off).
     #[inline(always)]
@@ -416,35 +371,12 @@ mod tests {
         });
     }
 
-    /// The row conversion equals the per-pixel tables for every kind, matrix, start
-    /// column, row and length (a whole step of eight lanes, a remainder, both), on
+    /// A row written into a buffer equals the per-pixel tables where its pixels are
+    /// written and keeps the buffer's words where not, for every kind and matrix and
+    /// many a column, row and length (whole steps of lanes, a remainder, both), on
     /// channel values that run through 0..=255 and past it (only the low 8 bits count).
     #[test]
-    fn rows_equal_pixels() {
-        each_table_and_kind(|m2, t, kind| {
-            for seed in 0..64i32 {
-                let len = 1 + (seed as usize * 7) % 40;
-                let (x0, y) = (seed as u32 * 5 % 11, seed as u32 % 6);
-                let ch = |k: i32| -> Vec<i32> {
-                    (0..len as i32)
-                        .map(|i| (i * 37 + seed * 101 + k * 59) % 300)
-                        .collect()
-                };
-                let (r, g, b) = (ch(0), ch(1), ch(2));
-                let mut out = vec![0u16; len];
-                t.rgb565_row(kind, x0, y, [&r, &g, &b], &mut out);
-                for i in 0..len {
-                    let want = t.rgb565(kind, x0 + i as u32, y, r[i] as u8, g[i] as u8, b[i] as u8);
-                    assert_eq!(out[i], want, "{m2:?} {kind:?} x0 {x0} y {y} lane {i}");
-                }
-            }
-        });
-    }
-
-    /// Written into a buffer, a row is [`Dither::rgb565_row`] where its pixels are
-    /// written and the buffer's words where not.
-    #[test]
-    fn rows_into_a_buffer_equal_rows() {
+    fn rows_into_a_buffer_equal_pixels() {
         each_table_and_kind(|m2, t, kind| {
             for seed in 0..64i32 {
                 let len = 1 + (seed as usize * 7) % 70;
@@ -459,12 +391,12 @@ mod tests {
                     .map(|i| !(i * 13 + seed as usize).is_multiple_of(5))
                     .collect();
                 let before: Vec<u16> = (0..len).map(|i| (i as u16).wrapping_mul(40503)).collect();
-                let mut row = vec![0u16; len];
-                t.rgb565_row(kind, x0, y, [&r, &g, &b], &mut row);
                 let mut dst = before.clone();
                 t.rgb565_row_into(kind, x0, y, [&r, &g, &b], &write, &mut dst);
                 for i in 0..len {
-                    let want = if write[i] { row[i] } else { before[i] };
+                    let pixel =
+                        t.rgb565(kind, x0 + i as u32, y, r[i] as u8, g[i] as u8, b[i] as u8);
+                    let want = if write[i] { pixel } else { before[i] };
                     assert_eq!(dst[i], want, "{m2:?} {kind:?} x0 {x0} y {y} lane {i}");
                 }
             }
