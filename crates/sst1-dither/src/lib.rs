@@ -235,8 +235,7 @@ impl Dither {
         }
         // In steps of a fixed width with the entries spread over it (indexed `i & 3`
         // instead, the loop stayed scalar).
-        const STEP: usize = ROW_LANES;
-        let d: [i32; STEP] = core::array::from_fn(|i| {
+        let d: [i32; ROW_LANES] = core::array::from_fn(|i| {
             i32::from(matrix_entry(
                 kind,
                 self.matrix_2x2,
@@ -244,18 +243,18 @@ impl Dither {
                 y,
             ))
         });
-        let mut dst_steps = dst.chunks_exact_mut(STEP);
+        let mut dst_steps = dst.chunks_exact_mut(ROW_LANES);
         let mut src_steps = r
-            .chunks_exact(STEP)
-            .zip(g.chunks_exact(STEP))
-            .zip(b.chunks_exact(STEP))
-            .zip(write.chunks_exact(STEP));
+            .chunks_exact(ROW_LANES)
+            .zip(g.chunks_exact(ROW_LANES))
+            .zip(b.chunks_exact(ROW_LANES))
+            .zip(write.chunks_exact(ROW_LANES));
         for (o, (((r, g), b), w)) in (&mut dst_steps).zip(&mut src_steps) {
-            for i in 0..STEP {
+            for i in 0..ROW_LANES {
                 put(&mut o[i], dither_lane(r[i], g[i], b[i], d[i]), w[i]);
             }
         }
-        let done = n - n % STEP;
+        let done = n - n % ROW_LANES;
         for (i, o) in dst_steps.into_remainder().iter_mut().enumerate() {
             let j = done + i;
             put(o, dither_lane(r[j], g[j], b[j], d[i]), write[j]);
