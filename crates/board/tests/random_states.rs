@@ -224,8 +224,16 @@ impl Coverage {
             ("kill_chroma", 1),
             ("kill_zfunc", 1),
             ("kill_afunc", 1),
+            // Textured triangles whose pixels read the texel or not (the span kernels
+            // skip the TMUs where none does).
+            ("texel_read", 2),
         ] {
             c.expect(name, n);
+        }
+        // TMUs whose combine reads the upstream TMU's output or not (the span kernels
+        // skip the upstream TMUs where it does not).
+        for t in 0..max_tmus.saturating_sub(1) {
+            c.expect(&format!("tmu{t}.reads_other"), 2);
         }
         for t in 0..max_tmus {
             for (name, n) in [
@@ -335,6 +343,21 @@ impl Coverage {
                 self.field("alpha_function", bits(am, 3, 1));
             }
             if bit(cp, 27) == 1 {
+                let read = pixelfx::color_path::texel_read(
+                    sst1_regs::FbzColorPath(cp),
+                    sst1_regs::FbzMode(fbz),
+                    sst1_regs::AlphaMode(am),
+                    pixelfx::PixelProfile::default().alpha_test_input
+                        == pixelfx::profile::AlphaTestInput::Combined,
+                );
+                self.field("texel_read", u32::from(read));
+                for t in 0..tmus.saturating_sub(1) {
+                    let tm = s.tmu(t, addr::TEXTURE_MODE);
+                    let reads = |zero_other: u32, mselect: u32| zero_other == 0 || mselect == 2;
+                    let reads_other = reads(bit(tm, 12), bits(tm, 16, 14))
+                        || reads(bit(tm, 21), bits(tm, 25, 23));
+                    self.field(&format!("tmu{t}.reads_other"), u32::from(reads_other));
+                }
                 for t in 0..tmus {
                     let tm = s.tmu(t, addr::TEXTURE_MODE);
                     let lod = s.tmu(t, addr::T_LOD);

@@ -11,7 +11,9 @@
 //! Source: spec 5.16 block diagrams; arithmetic (9-bit signed difference times
 //! `factor + 1`, shift by 8, clamp to 0..=255) from MAME and DOSBox Staging, which agree.
 
-use sst1_regs::{AlphaLocalSelect, AlphaSelect, CcMselect, FbzColorPath, RgbSelect, Rgba};
+use sst1_regs::{
+    AlphaLocalSelect, AlphaMode, AlphaSelect, CcMselect, FbzColorPath, FbzMode, RgbSelect, Rgba,
+};
 
 /// The candidate inputs of the combine units for one pixel.
 #[derive(Clone, Copy, Debug, Default)]
@@ -58,6 +60,34 @@ pub fn texel_feeds_equation(cp: FbzColorPath) -> bool {
         || (cp.cc_mselect() == CcMselect::AOther && other_alpha)
         || cp.cca_mselect() == CcMselect::TextureAlpha
         || (cp.cca_mselect() == CcMselect::AOther && other_alpha)
+}
+
+/// Whether anything a pixel computes reads the texel in this state: chroma key on
+/// `c_other`, the alpha mask and (unless the combined alpha is tested) the alpha test on
+/// `a_other`, the colour and alpha combine (`c_other` and `a_other` unless zeroed,
+/// `a_other` or texture alpha as a factor), and the local-select override (texture
+/// alpha bit 7). Where it is `false`, the texel changes neither the pixel nor whether it
+/// is written, and a chunk need not sample it (the span kernels' shortcut; the
+/// reference path samples every textured pixel).
+pub fn texel_read(
+    cp: FbzColorPath,
+    mode: FbzMode,
+    alpha_mode: AlphaMode,
+    alpha_test_on_combined: bool,
+) -> bool {
+    let rgb_texel = cp.cc_rgbselect() == RgbSelect::Texture;
+    let alpha_texel = cp.cc_aselect() == AlphaSelect::Texture;
+    let c_other_read = mode.enable_chromakey() || !cp.cc_zero_other();
+    let a_other_read = mode.enable_alpha_mask()
+        || (alpha_mode.alpha_test_enable() && !alpha_test_on_combined)
+        || cp.cc_mselect() == CcMselect::AOther
+        || !cp.cca_zero_other()
+        || cp.cca_mselect() == CcMselect::AOther;
+    (rgb_texel && c_other_read)
+        || (alpha_texel && a_other_read)
+        || cp.cc_localselect_override()
+        || cp.cc_mselect() == CcMselect::TextureAlpha
+        || cp.cca_mselect() == CcMselect::TextureAlpha
 }
 
 /// `c_local` / `a_local` (spec 5.16 bits 4, 6:5, 7).
@@ -178,6 +208,34 @@ mod tests {
         b: 30,
         a: 64,
     };
+
+    #[test]
+    fn texel_read_follows_each_reader() {
+        let (mode, am) = (FbzMode(0), AlphaMode(0));
+        let read =
+            |cp: u32, mode: FbzMode, am: AlphaMode| texel_read(FbzColorPath(cp), mode, am, false);
+        // rgbselect = texture (1), the other passed through: read.
+        assert!(read(1, mode, am));
+        // ... zeroed (bit 8): not read, unless the chroma key compares it (fbzMode bit 1).
+        assert!(!read(1 | 1 << 8 | 1 << 17, mode, am));
+        assert!(read(1 | 1 << 8 | 1 << 17, FbzMode(1 << 1), am));
+        // aselect = texture (1 << 2), both units' other zeroed: read only by the alpha
+        // mask (fbzMode bit 13), the alpha test of a_other, or a_other as a factor.
+        let zeroed = 1 << 2 | 1 << 8 | 1 << 17;
+        assert!(!read(zeroed, mode, am));
+        assert!(read(zeroed, FbzMode(1 << 13), am));
+        assert!(read(zeroed, mode, AlphaMode(1)));
+        assert!(!texel_read(FbzColorPath(zeroed), mode, AlphaMode(1), true));
+        assert!(read(zeroed | 2 << 10, mode, am));
+        assert!(read(zeroed | 2 << 19, mode, am));
+        // Iterated colour, other zeroed: read only through texture alpha (as a factor of
+        // either unit, or by the local-select override).
+        let iterated = 1 << 8 | 1 << 17;
+        assert!(!read(iterated, mode, am));
+        assert!(read(iterated | 4 << 10, mode, am));
+        assert!(read(iterated | 4 << 19, mode, am));
+        assert!(read(iterated | 1 << 7, mode, am));
+    }
 
     #[test]
     fn pass_through_other() {

@@ -53,6 +53,10 @@ pub struct DrawState {
     /// Whether the TMU chain is read for a textured pixel (`false` only with
     /// `OverrideTexel::ZeroWhenUnused` when the combine units take nothing from it).
     pub fetch_texel: bool,
+    /// Whether a pixel reads the texel at all in this state
+    /// ([`color_path::texel_read`]): the span kernels skip a texel source that samples
+    /// purely ([`crate::TexelSource::samples_purely`]) where it does not.
+    pub texel_read: bool,
 }
 
 impl DrawState {
@@ -81,10 +85,17 @@ impl DrawState {
             OverrideTexel::Texel => true,
             OverrideTexel::ZeroWhenUnused => color_path::texel_feeds_equation(color_path),
         };
+        let alpha_mode = AlphaMode(fbi.reg(addr::ALPHA_MODE));
+        let texel_read = color_path::texel_read(
+            color_path,
+            mode,
+            alpha_mode,
+            profile.alpha_test_input == crate::profile::AlphaTestInput::Combined,
+        );
         Self {
             color_path,
             mode,
-            alpha_mode: AlphaMode(fbi.reg(addr::ALPHA_MODE)),
+            alpha_mode,
             fog_mode: FogMode(fbi.reg(addr::FOG_MODE)),
             color0: Rgba::from_argb(fbi.reg(addr::COLOR0)),
             color1: Rgba::from_argb(fbi.reg(addr::COLOR1)),
@@ -99,6 +110,7 @@ impl DrawState {
             dither,
             dither_matrix,
             fetch_texel,
+            texel_read,
         }
     }
 }

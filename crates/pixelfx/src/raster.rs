@@ -48,6 +48,13 @@ pub trait TexelSource {
     /// position `(x, y)`.
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba;
 
+    /// Whether reading texels changes nothing that a later texel can see, so that the
+    /// span kernels may skip the source for a chunk whose pixels read no texel
+    /// ([`crate::DrawState::texel_read`]). This default says no.
+    fn samples_purely(&self) -> bool {
+        false
+    }
+
     /// [`TexelSource::texel`] for a watched pixel ([`crate::watch`]): the same texel,
     /// with the same effect on any state of the source, and each TMU's part of it
     /// pushed to `tmus`, upstream TMU first. This default pushes nothing.
@@ -104,6 +111,10 @@ impl TexelSource for NoTexture {
 
     fn band(&self) -> NoTexture {
         NoTexture
+    }
+
+    fn samples_purely(&self) -> bool {
+        true
     }
 
     #[inline]

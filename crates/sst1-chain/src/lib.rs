@@ -52,6 +52,12 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
         SharedChain::new(self.tmus)
     }
 
+    /// Pure where the chain is wired in full and no TMU has an 86Box texture cache entry
+    /// lent ([`Tmu::samples_purely`]).
+    fn samples_purely(&self) -> bool {
+        self.wiring == ChainModel::Full && self.tmus.iter().all(Tmu::samples_purely)
+    }
+
     #[inline]
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
         match self.tmus {
@@ -114,8 +120,10 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
             }
             [t0, upstream @ ..] => {
                 // Upstream first: the last TMU sees zero, each output feeds the next down.
+                // The TMUs whose output nothing reads are skipped.
+                let read = upstream_read(t0, upstream);
                 let mut other = &ZERO_COLOUR;
-                for t in upstream.iter_mut().rev() {
+                for t in upstream[..read].iter_mut().rev() {
                     other = t.texels_kept::<M>(place, alive, n, LaneOutput::Combined(other));
                 }
                 t0.texels::<M>(place, alive, n, LaneOutput::Combined(other), out);
@@ -170,6 +178,11 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
         SharedChain::new(self.tmus)
     }
 
+    /// A shared chain is pure: [`Chain::share`] refuses 86Box's chain and texture cache.
+    fn samples_purely(&self) -> bool {
+        true
+    }
+
     /// One pixel as a chunk of one live lane (what [`SharedChain::texels`] gives it).
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba {
         let mut alive = [false; LANES];
@@ -208,13 +221,35 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
             return;
         };
         // Upstream first: the last TMU sees zero, each output feeds the next down.
+        // The TMUs whose output nothing reads are skipped.
+        let read = upstream_read(t0, upstream);
         let mut other = &ZERO_COLOUR;
-        for (t, s) in upstream.iter().zip(upstream_scratch.iter_mut()).rev() {
+        let scratch = &mut upstream_scratch[..read];
+        for (t, s) in upstream[..read].iter().zip(scratch.iter_mut()).rev() {
             let what = LaneOutput::Combined(other);
             other = t.texels_kept_shared::<M>(s, place, alive, n, what);
         }
         let what = LaneOutput::Combined(other);
         t0.texels_shared::<M>(s0, place, alive, n, what, out);
+    }
+}
+
+/// How many of `upstream` (the TMUs above `t0`, nearest first) a chunk samples in a fully
+/// wired chain: those up to the first TMU whose output reads no `other`
+/// ([`Tmu::reads_other`]); the TMUs above it are skipped where every one of them samples
+/// purely ([`Tmu::samples_purely`]), else all are sampled, as the per-pixel path does.
+#[inline]
+fn upstream_read(t0: &Tmu, upstream: &[Tmu]) -> usize {
+    let mut read = 0;
+    let mut below = t0;
+    while read < upstream.len() && below.reads_other() {
+        below = &upstream[read];
+        read += 1;
+    }
+    if upstream[read..].iter().all(Tmu::samples_purely) {
+        read
+    } else {
+        upstream.len()
     }
 }
 

@@ -90,6 +90,12 @@ pub struct UnitControl {
 }
 
 impl UnitControl {
+    /// Whether the unit reads `c_other`: unless it zeroes it, and as the factor
+    /// `a_other`.
+    const fn reads_other(&self) -> bool {
+        !self.zero_other || matches!(self.mselect, MSelect::AOther)
+    }
+
     /// Combines the decoded `*_add_clocal` / `*_add_alocal` bits of one unit.
     ///
     /// For the RGB unit both add bits set add nothing (MAME and DOSBox treat the 2-bit field
@@ -179,6 +185,12 @@ impl TextureCombine {
             && alpha.zero_other
             && !alpha.sub_clocal
             && matches!(alpha.add, AddLocal::ALocal)
+    }
+
+    /// Whether either unit reads `c_other`, the upstream TMU's output
+    /// ([`UnitControl::reads_other`]).
+    pub const fn reads_other(&self) -> bool {
+        self.rgb.reads_other() || self.alpha.reads_other()
     }
 
     /// 86Box's combine for the upstream TMU of two (`voodoo_tmu_fetch_and_blend`, TMU 1):

@@ -818,6 +818,20 @@ impl Tmu {
         }
     }
 
+    /// Whether the TMU's output reads its `other` input, the upstream TMU's output
+    /// ([`combine::TextureCombine::reads_other`]; a pass-through reads its texel alone).
+    pub fn reads_other(&self) -> bool {
+        !self.passthrough && self.combine.reads_other()
+    }
+
+    /// Whether sampling ([`Tmu::texels`]) changes nothing that a later texel can see, so
+    /// that a chunk may skip a TMU whose output nothing reads: true unless an 86Box
+    /// texture cache entry is lent (its levels are decoded when first read, from the
+    /// texture memory of that moment).
+    pub fn samples_purely(&self) -> bool {
+        self.box86.lent.is_none()
+    }
+
     /// The raw `textureMode` register.
     pub fn texture_mode(&self) -> u32 {
         self.texture_mode
