@@ -94,6 +94,32 @@ static ROUTES: [u8; 256] = {
     routes
 };
 
+/// Whether a write to register index `i` only stores a triangle parameter (vertex,
+/// start and gradient registers, fixed or float) in the FBI, the TMUs or both: found from
+/// [`ROUTES`] (no check, no follow-up) and the parameter block's bounds. A run of such
+/// writes is stored without the rest of the write path ([`Board::write32_all`]).
+static PARAMETER_ONLY: [bool; 256] = {
+    let mut only = [false; 256];
+    let mut i = 0;
+    while i < 256 {
+        let offset = i as u32 * 4;
+        let parameter = (offset >= addr::VERTEX_AX && offset <= addr::D_W_DY)
+            || (offset >= addr::F_VERTEX_AX && offset <= addr::F_D_W_DY);
+        only[i] = parameter && ROUTES[i] & !(Route::FBI | Route::TREX) == 0;
+        i += 1;
+    }
+    only
+};
+
+/// Whether a bus write only stores a triangle parameter ([`PARAMETER_ONLY`]): in the
+/// register region and not an address of the alternate map (bit 21), whose decode
+/// depends on `fbiInit3`.
+#[inline(always)]
+fn parameter_only(bus_addr: u32) -> bool {
+    let a = aperture_offset(bus_addr);
+    a < 0x20_0000 && PARAMETER_ONLY[addr::index(a)]
+}
+
 /// Whether a write to FBI register `offset` (normal map) changes what the render thread
 /// holds or adds to ([`crate::deferred`]): the frame buffer's layout and buffer indices
 /// (init registers, `videoDimensions`), the counters (`nopCMD`), the fog table. The
@@ -127,6 +153,25 @@ impl Board {
             offset = map::remap_offset(offset);
         }
         (offset, chips)
+    }
+
+    /// A write that only stores a triangle parameter ([`parameter_only`]): what
+    /// [`Board::write_register`] does with it (TMUs first), without its checks.
+    #[inline(always)]
+    fn write_parameter<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
+        let (offset, chips) = self.decode_register(bus_addr);
+        let route = ROUTES[addr::index(offset)];
+        if route & Route::TREX != 0 {
+            if self.render_lent() {
+                self.lent_tmus(deferred::tmu_register, [chips, offset, value]);
+            } else {
+                deferred::tmu_register(&mut self.tmus, [chips, offset, value]);
+            }
+        }
+        if chips & 1 != 0 && route & Route::FBI != 0 {
+            let stored = self.fbi.write_parameter::<M>(offset, value);
+            debug_assert!(stored, "{offset:#x}");
+        }
     }
 
     fn write_register<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
@@ -366,8 +411,29 @@ impl Board {
     /// replay of a run of writes saves per write).
     pub fn write32_all(&mut self, writes: &[(u32, u32)]) {
         with_model!(self.kind, M => {
-            for &(bus_addr, value) in writes {
-                self.write32_as::<M>(bus_addr, value);
+            let mut rest = writes;
+            while let Some((&(bus_addr, value), after)) = rest.split_first() {
+                let run = rest
+                    .iter()
+                    .take(u16::MAX as usize)
+                    .take_while(|&&(a, _)| parameter_only(a))
+                    .count();
+                if run == 0 {
+                    self.write32_as::<M>(bus_addr, value);
+                    rest = after;
+                    continue;
+                }
+                // A run of writes that only store triangle parameters (most of a
+                // triangle's writes): timed as one run (what `write32_as` does per write
+                // adds up to the same), then stored. Nothing in between reads either.
+                let (params, after) = rest.split_at(run);
+                if self.timing_on {
+                    self.time_writes(run as u32);
+                }
+                for &(bus_addr, value) in params {
+                    self.write_parameter::<M>(bus_addr, value);
+                }
+                rest = after;
             }
         })
     }

@@ -206,6 +206,16 @@ impl Board {
         }
     }
 
+    /// `n` bus writes in a row in the timing model, as `n` [`Board::time_write`]s.
+    #[inline]
+    pub(crate) fn time_writes(&mut self, n: u32) {
+        if self.render_lent() {
+            self.timing_log.writes += n;
+        } else {
+            self.timing.writes(n);
+        }
+    }
+
     /// Queue a write to the TMUs the render thread holds, behind the triangles before it.
     pub(crate) fn lent_tmus(&mut self, apply: fn(&mut Vec<Tmu>, [u32; 3]), args: [u32; 3]) {
         let Some(render) = self.render.as_mut() else {

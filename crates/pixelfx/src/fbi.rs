@@ -247,6 +247,16 @@ impl Fbi {
         Command::None
     }
 
+    /// A write to a triangle parameter register (normal-map `offset`, 0x008..=0x0fc):
+    /// what [`Fbi::write_reg`] does with it, without looking for the other registers.
+    /// Returns `false`, storing nothing, if `offset` is not a parameter register.
+    #[inline(always)]
+    pub fn write_parameter<M: PixelModel>(&mut self, offset: u32, value: u32) -> bool {
+        let profile = M::pixel(&self.profile);
+        self.params
+            .write(offset & 0x3fc, value, profile.float_overflow)
+    }
+
     /// A register read (spec 5 register table: reads always come from the FBI).
     pub fn read_reg(&mut self, offset: u32) -> u32 {
         const COUNTER_MASK: u64 = 0x00ff_ffff;
