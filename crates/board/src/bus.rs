@@ -159,7 +159,13 @@ impl Board {
     /// [`Board::write_register`] does with it (TMUs first), without its checks.
     #[inline(always)]
     fn write_parameter<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
-        let (offset, chips) = self.decode_register(bus_addr);
+        // Not an address of the alternate map: the decode of `decode_register` without
+        // the remap.
+        let chips = match (bus_addr >> 10) & 0xf {
+            0 => 0xf,
+            chips => chips,
+        };
+        let offset = bus_addr & 0x3fc;
         let route = ROUTES[addr::index(offset)];
         if route & Route::TREX != 0 {
             if self.render_lent() {
@@ -393,6 +399,11 @@ impl Board {
         if self.timing_on {
             self.time_write();
         }
+        // Most of a triangle's writes: a shortcut past the register checks and commands.
+        if parameter_only(bus_addr) {
+            self.write_parameter::<M>(bus_addr, value);
+            return;
+        }
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             self.write_register::<M>(bus_addr, value);
@@ -411,29 +422,25 @@ impl Board {
     /// replay of a run of writes saves per write).
     pub fn write32_all(&mut self, writes: &[(u32, u32)]) {
         with_model!(self.kind, M => {
-            let mut rest = writes;
-            while let Some((&(bus_addr, value), after)) = rest.split_first() {
-                let run = rest
-                    .iter()
-                    .take(u16::MAX as usize)
-                    .take_while(|&&(a, _)| parameter_only(a))
-                    .count();
-                if run == 0 {
-                    self.write32_as::<M>(bus_addr, value);
-                    rest = after;
+            // Writes that only store a triangle parameter (most of a triangle's) are
+            // stored at once and timed as one run before the next other write: what
+            // `write32_as` does per write adds up to the same, and nothing in between
+            // reads either.
+            let mut untimed = 0u32;
+            for &(bus_addr, value) in writes {
+                if parameter_only(bus_addr) && untimed < u32::MAX {
+                    self.write_parameter::<M>(bus_addr, value);
+                    untimed += 1;
                     continue;
                 }
-                // A run of writes that only store triangle parameters (most of a
-                // triangle's writes): timed as one run (what `write32_as` does per write
-                // adds up to the same), then stored. Nothing in between reads either.
-                let (params, after) = rest.split_at(run);
-                if self.timing_on {
-                    self.time_writes(run as u32);
+                if untimed > 0 && self.timing_on {
+                    self.time_writes(untimed);
                 }
-                for &(bus_addr, value) in params {
-                    self.write_parameter::<M>(bus_addr, value);
-                }
-                rest = after;
+                untimed = 0;
+                self.write32_as::<M>(bus_addr, value);
+            }
+            if untimed > 0 && self.timing_on {
+                self.time_writes(untimed);
             }
         })
     }

@@ -227,6 +227,7 @@ impl Coverage {
             // Textured triangles whose pixels read the texel or not (the span kernels
             // skip the TMUs where none does).
             ("texel_read", 2),
+            ("colour_written", 2),
         ] {
             c.expect(name, n);
         }
@@ -336,6 +337,12 @@ impl Coverage {
             self.field("cca_add", bits(cp, 24, 23));
             self.field("cca_invert_output", bit(cp, 25));
             self.field("texture_enable", bit(cp, 27));
+            // RGB or alpha planes written (the span kernels skip fog and the blend
+            // where neither is).
+            self.field(
+                "colour_written",
+                u32::from(bit(fbz, 9) == 1 || (bit(fbz, 10) == 1 && bit(fbz, 18) == 1)),
+            );
             self.field("chromakey", bit(fbz, 1));
             self.field("alpha_mask", bit(fbz, 13));
             self.field("alpha_test_enable", bit(am, 0));
@@ -349,6 +356,8 @@ impl Coverage {
                     sst1_regs::AlphaMode(am),
                     pixelfx::PixelProfile::default().alpha_test_input
                         == pixelfx::profile::AlphaTestInput::Combined,
+                    bit(fbz, 9) == 1,
+                    bit(fbz, 10) == 1 && bit(fbz, 18) == 1,
                 );
                 self.field("texel_read", u32::from(read));
                 for t in 0..tmus.saturating_sub(1) {

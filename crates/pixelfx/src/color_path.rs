@@ -64,30 +64,39 @@ pub fn texel_feeds_equation(cp: FbzColorPath) -> bool {
 
 /// Whether anything a pixel computes reads the texel in this state: chroma key on
 /// `c_other`, the alpha mask and (unless the combined alpha is tested) the alpha test on
-/// `a_other`, the colour and alpha combine (`c_other` and `a_other` unless zeroed,
-/// `a_other` or texture alpha as a factor), and the local-select override (texture
-/// alpha bit 7). Where it is `false`, the texel changes neither the pixel nor whether it
-/// is written, and a chunk need not sample it (the span kernels' shortcut; the
-/// reference path samples every textured pixel).
+/// `a_other`; the colour combine unit (`c_other` and `a_other` unless zeroed, `a_other`
+/// or texture alpha as a factor, the local-select override's texture alpha bit 7) where
+/// RGB is written (`rgb_written`); the alpha unit (`a_other` unless zeroed or as a
+/// factor, texture alpha as a factor) where its output is used: RGB written (the blend
+/// factors), alpha planes written (`alpha_written`), or the combined alpha tested. (Fog
+/// and the alpha blend pass alpha on without reading RGB: the alpha channel blends with
+/// `AZERO` or `AONE` alone.)
+///
+/// Where it is `false`, the texel changes neither a pixel's value nor whether it is
+/// written, and a chunk need not sample it (the span kernels' shortcut; the reference
+/// path samples every textured pixel).
 pub fn texel_read(
     cp: FbzColorPath,
     mode: FbzMode,
     alpha_mode: AlphaMode,
     alpha_test_on_combined: bool,
+    rgb_written: bool,
+    alpha_written: bool,
 ) -> bool {
     let rgb_texel = cp.cc_rgbselect() == RgbSelect::Texture;
     let alpha_texel = cp.cc_aselect() == AlphaSelect::Texture;
-    let c_other_read = mode.enable_chromakey() || !cp.cc_zero_other();
-    let a_other_read = mode.enable_alpha_mask()
-        || (alpha_mode.alpha_test_enable() && !alpha_test_on_combined)
-        || cp.cc_mselect() == CcMselect::AOther
-        || !cp.cca_zero_other()
-        || cp.cca_mselect() == CcMselect::AOther;
-    (rgb_texel && c_other_read)
-        || (alpha_texel && a_other_read)
-        || cp.cc_localselect_override()
+    let alpha_test = alpha_mode.alpha_test_enable();
+    let tests = (rgb_texel && mode.enable_chromakey())
+        || (alpha_texel && (mode.enable_alpha_mask() || (alpha_test && !alpha_test_on_combined)));
+    let rgb_unit = (rgb_texel && !cp.cc_zero_other())
+        || (alpha_texel && cp.cc_mselect() == CcMselect::AOther)
         || cp.cc_mselect() == CcMselect::TextureAlpha
-        || cp.cca_mselect() == CcMselect::TextureAlpha
+        || cp.cc_localselect_override();
+    let alpha_unit = (alpha_texel
+        && (!cp.cca_zero_other() || cp.cca_mselect() == CcMselect::AOther))
+        || cp.cca_mselect() == CcMselect::TextureAlpha;
+    let alpha_used = rgb_written || alpha_written || (alpha_test && alpha_test_on_combined);
+    tests || (rgb_written && rgb_unit) || (alpha_used && alpha_unit)
 }
 
 /// `c_local` / `a_local` (spec 5.16 bits 4, 6:5, 7).
@@ -212,8 +221,9 @@ mod tests {
     #[test]
     fn texel_read_follows_each_reader() {
         let (mode, am) = (FbzMode(0), AlphaMode(0));
-        let read =
-            |cp: u32, mode: FbzMode, am: AlphaMode| texel_read(FbzColorPath(cp), mode, am, false);
+        let read = |cp: u32, mode: FbzMode, am: AlphaMode| {
+            texel_read(FbzColorPath(cp), mode, am, false, true, false)
+        };
         // rgbselect = texture (1), the other passed through: read.
         assert!(read(1, mode, am));
         // ... zeroed (bit 8): not read, unless the chroma key compares it (fbzMode bit 1).
@@ -225,7 +235,14 @@ mod tests {
         assert!(!read(zeroed, mode, am));
         assert!(read(zeroed, FbzMode(1 << 13), am));
         assert!(read(zeroed, mode, AlphaMode(1)));
-        assert!(!texel_read(FbzColorPath(zeroed), mode, AlphaMode(1), true));
+        assert!(!texel_read(
+            FbzColorPath(zeroed),
+            mode,
+            AlphaMode(1),
+            true,
+            true,
+            false
+        ));
         assert!(read(zeroed | 2 << 10, mode, am));
         assert!(read(zeroed | 2 << 19, mode, am));
         // Iterated colour, other zeroed: read only through texture alpha (as a factor of
@@ -235,6 +252,51 @@ mod tests {
         assert!(read(iterated | 4 << 10, mode, am));
         assert!(read(iterated | 4 << 19, mode, am));
         assert!(read(iterated | 1 << 7, mode, am));
+        // Nothing written: only the tests read it; the alpha unit's output also where
+        // alpha planes are written or the combined alpha is tested.
+        let modulate = 1 | 1 << 2 | 4 << 10 | 4 << 19;
+        assert!(!texel_read(
+            FbzColorPath(modulate),
+            mode,
+            am,
+            false,
+            false,
+            false
+        ));
+        assert!(texel_read(
+            FbzColorPath(modulate),
+            mode,
+            am,
+            false,
+            false,
+            true
+        ));
+        assert!(texel_read(
+            FbzColorPath(modulate),
+            mode,
+            AlphaMode(1),
+            true,
+            false,
+            false
+        ));
+        assert!(texel_read(
+            FbzColorPath(modulate),
+            FbzMode(1 << 1),
+            am,
+            false,
+            false,
+            false
+        ));
+        // RGB alone written: the alpha unit's output still sets the blend factors.
+        let alpha_only = 1 << 2 | 1 << 8;
+        assert!(texel_read(
+            FbzColorPath(alpha_only),
+            mode,
+            am,
+            false,
+            true,
+            false
+        ));
     }
 
     #[test]

@@ -57,6 +57,10 @@ pub struct DrawState {
     /// ([`color_path::texel_read`]): the span kernels skip a texel source that samples
     /// purely ([`crate::TexelSource::samples_purely`]) where it does not.
     pub texel_read: bool,
+    /// Whether the pixel's colour is written: RGB, or alpha planes in the aux buffer.
+    /// Where it is not, the span kernels skip fog and the alpha blend, whose output only
+    /// the writes read.
+    pub colour_written: bool,
 }
 
 impl DrawState {
@@ -86,11 +90,15 @@ impl DrawState {
             OverrideTexel::ZeroWhenUnused => color_path::texel_feeds_equation(color_path),
         };
         let alpha_mode = AlphaMode(fbi.reg(addr::ALPHA_MODE));
+        let alpha_written =
+            crate::span::aux_enabled(mode, profile.aux_write) && mode.enable_alpha_planes();
         let texel_read = color_path::texel_read(
             color_path,
             mode,
             alpha_mode,
             profile.alpha_test_input == crate::profile::AlphaTestInput::Combined,
+            mode.rgb_buffer_mask(),
+            alpha_written,
         );
         Self {
             color_path,
@@ -111,6 +119,7 @@ impl DrawState {
             dither_matrix,
             fetch_texel,
             texel_read,
+            colour_written: mode.rgb_buffer_mask() || alpha_written,
         }
     }
 }
