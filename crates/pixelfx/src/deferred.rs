@@ -465,7 +465,8 @@ impl Fbi {
     /// with the span kernels, from `tex`.
     pub fn shade_job<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
         self.stats.triangles += 1;
-        self.walk::<M, T, true>(st, tex);
+        let st = st.for_span_kernels(tex.samples_purely());
+        self.walk::<M, T, true>(&st, tex);
     }
 
     /// The frame buffer with its memory (this FBI keeps the layout and buffer indices,

@@ -50,12 +50,13 @@ pub struct DrawState {
     /// The matrix `fbzMode` bit 11 selects, whether or not dithering is on (the
     /// alpha-blend dither subtraction reads it).
     pub dither_matrix: DitherKind,
-    /// Whether the TMU chain is read for a textured pixel (`false` only with
-    /// `OverrideTexel::ZeroWhenUnused` when the combine units take nothing from it).
+    /// Whether the TMU chain is read for a textured pixel: `false` with
+    /// `OverrideTexel::ZeroWhenUnused` when the combine units take nothing from it, and
+    /// on the span kernels' walk where no pixel reads the texel ([`DrawState::texel_read`])
+    /// and the source samples purely ([`DrawState::for_span_kernels`]).
     pub fetch_texel: bool,
     /// Whether a pixel reads the texel at all in this state
-    /// ([`color_path::texel_read`]): the span kernels skip a texel source that samples
-    /// purely ([`crate::TexelSource::samples_purely`]) where it does not.
+    /// ([`color_path::texel_read`]).
     pub texel_read: bool,
     /// Whether the pixel's colour is written: RGB, or alpha planes in the aux buffer.
     /// Where it is not, the span kernels skip fog and the alpha blend, whose output only
@@ -125,6 +126,16 @@ impl DrawState {
 }
 
 impl DrawState {
+    /// The state for the span kernels' walk from a texel source: one that samples purely
+    /// ([`crate::TexelSource::samples_purely`]) is not asked where no pixel reads the
+    /// texel ([`DrawState::texel_read`]). The reference path asks it for every textured
+    /// pixel.
+    #[inline]
+    pub fn for_span_kernels(mut self, source_samples_purely: bool) -> Self {
+        self.fetch_texel &= self.texel_read || !source_samples_purely;
+        self
+    }
+
     /// Screen row of raster row `y`, after the Y origin flip when `flip` is set (as
     /// [`Fbi::screen_y`] with the registers captured).
     #[inline]

@@ -50,7 +50,7 @@ pub trait TexelSource {
 
     /// Whether reading texels changes nothing that a later texel can see, so that the
     /// span kernels may skip the source for a chunk whose pixels read no texel
-    /// ([`crate::DrawState::texel_read`]). This default says no.
+    /// ([`crate::pipeline::DrawState::texel_read`]). This default says no.
     fn samples_purely(&self) -> bool {
         false
     }
@@ -142,6 +142,7 @@ impl Fbi {
         if self.generic_path || !M::SPAN_KERNELS {
             self.walk::<M, T, false>(&st, tex);
         } else {
+            let st = st.for_span_kernels(tex.samples_purely());
             self.walk::<M, T, true>(&st, tex);
         }
     }

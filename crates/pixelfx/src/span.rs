@@ -1060,9 +1060,7 @@ impl Shader<'_> {
 
         // --- colour selection ---
         let texel_store: ColourLanes<L>;
-        // A source that samples purely is skipped where no pixel reads the texel.
-        let texel_needed = st.texel_read || !tex.samples_purely();
-        let texel: &ColourLanes<L> = if cp.texture_enable() && st.fetch_texel && texel_needed {
+        let texel: &ColourLanes<L> = if cp.texture_enable() && st.fetch_texel {
             let mut t = ColourLanes::ZERO;
             // The texel source takes the widest chunk; a narrower one uses its first lanes.
             let mut wide_alive = [false; LANES];
