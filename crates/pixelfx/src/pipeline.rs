@@ -59,8 +59,6 @@ pub struct DrawState {
     /// ([`color_path::texel_read`]).
     pub texel_read: bool,
     /// Whether the pixel's colour is written: RGB, or alpha planes in the aux buffer.
-    /// Where it is not, the span kernels skip fog and the alpha blend, whose output only
-    /// the writes read.
     pub colour_written: bool,
 }
 
@@ -126,13 +124,19 @@ impl DrawState {
 }
 
 impl DrawState {
-    /// The state for the span kernels' walk from a texel source: one that samples purely
-    /// ([`crate::TexelSource::samples_purely`]) is not asked where no pixel reads the
-    /// texel ([`DrawState::texel_read`]). The reference path asks it for every textured
-    /// pixel.
+    /// The state for the span kernels' walk from a texel source, without the work whose
+    /// output no pixel reads (the reference path does it all): a source that samples
+    /// purely ([`crate::TexelSource::samples_purely`]) is not asked where no pixel reads
+    /// the texel ([`DrawState::texel_read`]), and fog and the alpha blend, which feed the
+    /// colour writes alone, are off where no colour is written
+    /// ([`DrawState::colour_written`]).
     #[inline]
     pub fn for_span_kernels(mut self, source_samples_purely: bool) -> Self {
         self.fetch_texel &= self.texel_read || !source_samples_purely;
+        if !self.colour_written {
+            self.fog_mode = self.fog_mode.with_enable_fog(false);
+            self.alpha_mode = self.alpha_mode.with_alpha_blend_enable(false);
+        }
         self
     }
 

@@ -1189,8 +1189,7 @@ impl Shader<'_> {
 
         // --- fog ---
         let fogged_store: ColourLanes<L>;
-        // Fog and the alpha blend feed the writes alone: skipped where no colour is.
-        let fogged = if fog_mode.enable_fog() && st.colour_written {
+        let fogged = if fog_mode.enable_fog() {
             let input = fog::FogLanes {
                 color: &combined.c,
                 alpha: &iterated.c[3],
@@ -1216,7 +1215,7 @@ impl Shader<'_> {
 
         // --- alpha blend ---
         let blended: ColourLanes<L>;
-        let out = if am.alpha_blend_enable() && st.colour_written {
+        let out = if am.alpha_blend_enable() {
             let (dst_rgb565, _) = place.load(mem.colour(), Buffer::Colour);
             let (dst_aux, has_aux) = place.load(mem.aux(), Buffer::Aux);
             let dither_value = place.dither_entries(self.dither, st.dither_matrix);
