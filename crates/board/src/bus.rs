@@ -120,6 +120,15 @@ fn parameter_only(bus_addr: u32) -> bool {
     a < 0x20_0000 && PARAMETER_ONLY[addr::index(a)]
 }
 
+/// The chips a register-region address selects (bits 13:10; 0 means all, spec 5).
+#[inline(always)]
+fn chip_mask(addr: u32) -> u32 {
+    match (addr >> 10) & 0xf {
+        0 => 0xf,
+        chips => chips,
+    }
+}
+
 /// Whether a write to FBI register `offset` (normal map) changes what the render thread
 /// holds or adds to ([`crate::deferred`]): the frame buffer's layout and buffer indices
 /// (init registers, `videoDimensions`), the counters (`nopCMD`), the fog table. The
@@ -142,10 +151,7 @@ fn settles_render(offset: u32) -> bool {
 impl Board {
     /// The normal-map register offset and chip mask of a register-region address.
     fn decode_register(&self, addr: u32) -> (u32, u32) {
-        let mut chips = (addr >> 10) & 0xf;
-        if chips == 0 {
-            chips = 0xf;
-        }
+        let chips = chip_mask(addr);
         let mut offset = addr & 0x3fc;
         // fbiInit3 bit 0 with address bit 21 selects the alternate triangle map (spec 5).
         let remap = self.fbi.reg(addr::FBI_INIT3) & 1 != 0;
@@ -161,22 +167,27 @@ impl Board {
     fn write_parameter<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
         // Not an address of the alternate map: the decode of `decode_register` without
         // the remap.
-        let chips = match (bus_addr >> 10) & 0xf {
-            0 => 0xf,
-            chips => chips,
-        };
+        let chips = chip_mask(bus_addr);
         let offset = bus_addr & 0x3fc;
         let route = ROUTES[addr::index(offset)];
         if route & Route::TREX != 0 {
-            if self.render_lent() {
-                self.lent_tmus(deferred::tmu_register, [chips, offset, value]);
-            } else {
-                deferred::tmu_register(&mut self.tmus, [chips, offset, value]);
-            }
+            self.tmu_register(chips, offset, value);
         }
         if chips & 1 != 0 && route & Route::FBI != 0 {
             let stored = self.fbi.write_parameter::<M>(offset, value);
             debug_assert!(stored, "{offset:#x}");
+        }
+    }
+
+    /// A register write to the TMUs of `chips` (bits 1..=3), now or behind the triangles
+    /// the render thread holds. Float S/T/W writes go to the TMUs as they are: the TMU
+    /// keeps their 32 fraction bits (MAME, DOSBox Staging and 86Box all do).
+    #[inline(always)]
+    fn tmu_register(&mut self, chips: u32, offset: u32, value: u32) {
+        if self.render_lent() {
+            self.lent_tmus(deferred::tmu_register, [chips, offset, value]);
+        } else {
+            deferred::tmu_register(&mut self.tmus, [chips, offset, value]);
         }
     }
 
@@ -199,13 +210,7 @@ impl Board {
         }
         // TMU writes first: a triangle command must see the TMUs' new state.
         if route & Route::TREX != 0 {
-            // Float S/T/W writes go to the TMUs as they are: the TMU keeps their 32
-            // fraction bits (MAME, DOSBox Staging and 86Box all do).
-            if self.render_lent() {
-                self.lent_tmus(deferred::tmu_register, [chips, offset, value]);
-            } else {
-                deferred::tmu_register(&mut self.tmus, [chips, offset, value]);
-            }
+            self.tmu_register(chips, offset, value);
         }
         if chips & 1 == 0 || route & Route::FBI == 0 {
             return;
@@ -402,8 +407,13 @@ impl Board {
         // Most of a triangle's writes: a shortcut past the register checks and commands.
         if parameter_only(bus_addr) {
             self.write_parameter::<M>(bus_addr, value);
-            return;
+        } else {
+            self.write_other::<M>(bus_addr, value);
         }
+    }
+
+    /// A bus write that is not [`parameter_only`], after its time in the timing model.
+    fn write_other<M: ChipModel>(&mut self, bus_addr: u32, value: u32) {
         let bus_addr = aperture_offset(bus_addr);
         if bus_addr < LFB_BASE {
             self.write_register::<M>(bus_addr, value);
@@ -428,21 +438,34 @@ impl Board {
             // reads either.
             let mut untimed = 0u32;
             for &(bus_addr, value) in writes {
-                if parameter_only(bus_addr) && untimed < u32::MAX {
+                if parameter_only(bus_addr) {
                     self.write_parameter::<M>(bus_addr, value);
                     untimed += 1;
+                    if untimed == u32::MAX {
+                        self.time_run(&mut untimed);
+                    }
                     continue;
                 }
-                if untimed > 0 && self.timing_on {
-                    self.time_writes(untimed);
+                self.time_run(&mut untimed);
+                if self.timing_on {
+                    self.time_write();
                 }
-                untimed = 0;
-                self.write32_as::<M>(bus_addr, value);
+                self.write_other::<M>(bus_addr, value);
             }
-            if untimed > 0 && self.timing_on {
-                self.time_writes(untimed);
-            }
+            self.time_run(&mut untimed);
         })
+    }
+}
+
+impl Board {
+    /// Charges the `untimed` parameter writes of [`Board::write32_all`] as one run, and
+    /// zeroes the count.
+    #[inline(always)]
+    fn time_run(&mut self, untimed: &mut u32) {
+        if *untimed > 0 && self.timing_on {
+            self.time_writes(*untimed);
+        }
+        *untimed = 0;
     }
 }
 

@@ -465,7 +465,7 @@ impl Fbi {
     /// with the span kernels, from `tex`.
     pub fn shade_job<M: PixelModel, T: TexelSource>(&mut self, st: &DrawState, tex: &mut T) {
         self.stats.triangles += 1;
-        let st = st.for_span_kernels(tex.samples_purely());
+        let st = st.for_span_kernels(&M::pixel(&self.profile()), tex.samples_purely());
         self.walk::<M, T, true>(&st, tex);
     }
 

@@ -192,10 +192,7 @@ impl Fbi {
     pub fn write_reg<M: PixelModel>(&mut self, offset: u32, value: u32) -> Command {
         let idx = addr::index(offset);
         let profile = M::pixel(&self.profile);
-        if self
-            .params
-            .write(offset & 0x3fc, value, profile.float_overflow)
-        {
+        if self.write_parameter::<M>(offset, value) {
             return Command::None;
         }
         match offset & 0x3fc {

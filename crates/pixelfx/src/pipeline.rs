@@ -19,7 +19,7 @@ use crate::color_path::{self, Inputs};
 use crate::fbi::Fbi;
 use crate::iter::{wfloat, Iterated};
 use crate::model::PixelModel;
-use crate::profile::{ClipRightEdge, OverrideTexel, ZAlphaByte};
+use crate::profile::{ClipRightEdge, OverrideTexel, PixelProfile, ZAlphaByte};
 use crate::stats::Kill;
 use crate::watch::StageSink;
 use crate::{alpha_test, blend, depth, fog, stipple};
@@ -52,14 +52,9 @@ pub struct DrawState {
     pub dither_matrix: DitherKind,
     /// Whether the TMU chain is read for a textured pixel: `false` with
     /// `OverrideTexel::ZeroWhenUnused` when the combine units take nothing from it, and
-    /// on the span kernels' walk where no pixel reads the texel ([`DrawState::texel_read`])
-    /// and the source samples purely ([`DrawState::for_span_kernels`]).
+    /// on the span kernels' walk where no pixel reads the texel and the source samples
+    /// purely ([`DrawState::for_span_kernels`]).
     pub fetch_texel: bool,
-    /// Whether a pixel reads the texel at all in this state
-    /// ([`color_path::texel_read`]).
-    pub texel_read: bool,
-    /// Whether the pixel's colour is written: RGB, or alpha planes in the aux buffer.
-    pub colour_written: bool,
 }
 
 impl DrawState {
@@ -88,21 +83,10 @@ impl DrawState {
             OverrideTexel::Texel => true,
             OverrideTexel::ZeroWhenUnused => color_path::texel_feeds_equation(color_path),
         };
-        let alpha_mode = AlphaMode(fbi.reg(addr::ALPHA_MODE));
-        let alpha_written =
-            crate::span::aux_enabled(mode, profile.aux_write) && mode.enable_alpha_planes();
-        let texel_read = color_path::texel_read(
-            color_path,
-            mode,
-            alpha_mode,
-            profile.alpha_test_input == crate::profile::AlphaTestInput::Combined,
-            mode.rgb_buffer_mask(),
-            alpha_written,
-        );
         Self {
             color_path,
             mode,
-            alpha_mode,
+            alpha_mode: AlphaMode(fbi.reg(addr::ALPHA_MODE)),
             fog_mode: FogMode(fbi.reg(addr::FOG_MODE)),
             color0: Rgba::from_argb(fbi.reg(addr::COLOR0)),
             color1: Rgba::from_argb(fbi.reg(addr::COLOR1)),
@@ -117,23 +101,35 @@ impl DrawState {
             dither,
             dither_matrix,
             fetch_texel,
-            texel_read,
-            colour_written: mode.rgb_buffer_mask() || alpha_written,
         }
     }
 }
 
 impl DrawState {
-    /// The state for the span kernels' walk from a texel source, without the work whose
-    /// output no pixel reads (the reference path does it all): a source that samples
-    /// purely ([`crate::TexelSource::samples_purely`]) is not asked where no pixel reads
-    /// the texel ([`DrawState::texel_read`]), and fog and the alpha blend, which feed the
-    /// colour writes alone, are off where no colour is written
-    /// ([`DrawState::colour_written`]).
+    /// The state for the span kernels' walk from a texel source, as `profile` (the
+    /// model's) draws, without the work whose output no pixel reads (the reference path
+    /// does it all): a source that samples purely
+    /// ([`crate::TexelSource::samples_purely`]) is not asked where no pixel reads the
+    /// texel ([`color_path::texel_read`]), and fog and the alpha blend, which feed the
+    /// colour writes alone, are off where no colour is written (neither RGB nor alpha
+    /// planes).
     #[inline]
-    pub fn for_span_kernels(mut self, source_samples_purely: bool) -> Self {
-        self.fetch_texel &= self.texel_read || !source_samples_purely;
-        if !self.colour_written {
+    pub fn for_span_kernels(mut self, profile: &PixelProfile, source_samples_purely: bool) -> Self {
+        let mode = self.mode;
+        let rgb_written = mode.rgb_buffer_mask();
+        let alpha_written =
+            crate::span::aux_enabled(mode, profile.aux_write) && mode.enable_alpha_planes();
+        if source_samples_purely {
+            self.fetch_texel &= color_path::texel_read(
+                self.color_path,
+                mode,
+                self.alpha_mode,
+                profile.alpha_test_input == crate::profile::AlphaTestInput::Combined,
+                rgb_written,
+                alpha_written,
+            );
+        }
+        if !rgb_written && !alpha_written {
             self.fog_mode = self.fog_mode.with_enable_fog(false);
             self.alpha_mode = self.alpha_mode.with_alpha_blend_enable(false);
         }

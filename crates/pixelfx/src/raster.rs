@@ -49,8 +49,8 @@ pub trait TexelSource {
     fn texel(&mut self, dx: i32, dy: i32, x: i32, y: i32) -> Rgba;
 
     /// Whether reading texels changes nothing that a later texel can see, so that the
-    /// span kernels may skip the source for a chunk whose pixels read no texel
-    /// ([`crate::pipeline::DrawState::texel_read`]). This default says no.
+    /// span kernels may skip the source for a triangle whose pixels read no texel
+    /// ([`crate::pipeline::DrawState::for_span_kernels`]). This default says no.
     fn samples_purely(&self) -> bool {
         false
     }
@@ -142,7 +142,7 @@ impl Fbi {
         if self.generic_path || !M::SPAN_KERNELS {
             self.walk::<M, T, false>(&st, tex);
         } else {
-            let st = st.for_span_kernels(tex.samples_purely());
+            let st = st.for_span_kernels(&M::pixel(&self.profile()), tex.samples_purely());
             self.walk::<M, T, true>(&st, tex);
         }
     }
