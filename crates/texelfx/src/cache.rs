@@ -26,6 +26,13 @@ pub(crate) struct TexelCache {
     valid: u16,
     /// Memory span `(first byte, length)` each valid level was decoded from.
     spans: [(u32, u32); 9],
+    /// Of each level paired ([`TexelCache::pair`]), every texel with its right-hand
+    /// neighbour in the row (wrapping to the row's first): `texel | neighbour << 32`, so
+    /// that a bilinear fetch reads two taps in one load.
+    pairs: [Vec<u64>; 9],
+    /// Bit n set when `pairs[n]` was built from `levels[n]` as it is (valid only while
+    /// the level is).
+    paired: u16,
 }
 
 impl TexelCache {
@@ -35,12 +42,15 @@ impl TexelCache {
             levels: Default::default(),
             valid: 0,
             spans: [(0, 0); 9],
+            pairs: Default::default(),
+            paired: 0,
         }
     }
 
     /// Drops every level.
     pub fn clear(&mut self) {
         self.valid = 0;
+        self.paired = 0;
     }
 
     /// Whether LOD `lod` is decoded.
@@ -61,6 +71,37 @@ impl TexelCache {
         self.spans[lod] = (layout.lod_base[lod], len);
         self.levels[lod] = texels;
         self.valid |= 1 << lod;
+        self.paired &= !(1 << lod);
+    }
+
+    /// Builds the pairs of LOD `lod` (valid), whose rows are `width` texels wide
+    /// ([`TexelCache::pairs`]); a level that is not whole rows of `width` (none should
+    /// be) gets none.
+    pub fn pair(&mut self, lod: usize, width: u32) {
+        let level = &self.levels[lod];
+        let width = width as usize;
+        if !self.has(lod) || width == 0 || !level.len().is_multiple_of(width) {
+            return;
+        }
+        let pairs = &mut self.pairs[lod];
+        pairs.clear();
+        pairs.reserve(level.len());
+        for row in level.chunks_exact(width) {
+            let next = row[1..].iter().chain(&row[..1]);
+            pairs.extend(
+                row.iter()
+                    .zip(next)
+                    .map(|(&a, &b)| u64::from(a) | u64::from(b) << 32),
+            );
+        }
+        self.paired |= 1 << lod;
+    }
+
+    /// The pairs of LOD `lod` ([`TexelCache::pair`]), where they were built from the level
+    /// as it is.
+    #[inline(always)]
+    pub fn pairs(&self, lod: usize) -> Option<&[u64]> {
+        (self.valid & self.paired & (1 << lod) != 0).then(|| &self.pairs[lod][..])
     }
 
     /// Exchanges the levels and their valid bits with `levels` and `valid` (how the 86Box
@@ -68,11 +109,13 @@ impl TexelCache {
     pub fn swap_storage(&mut self, levels: &mut [Vec<u32>; 9], valid: &mut u16) {
         std::mem::swap(&mut self.levels, levels);
         std::mem::swap(&mut self.valid, valid);
+        self.paired = 0;
     }
 
     /// A buffer to decode LOD `lod` into: the level's old storage, emptied.
     pub fn take_buffer(&mut self, lod: usize) -> Vec<u32> {
         self.valid &= !(1 << lod);
+        self.paired &= !(1 << lod);
         let mut v = std::mem::take(&mut self.levels[lod]);
         v.clear();
         v
@@ -111,6 +154,7 @@ impl TexelCache {
                 || (start.wrapping_sub(addr) & mem_mask) < len;
             if overlaps {
                 self.valid &= !(1 << lod);
+                self.paired &= !(1 << lod);
             }
         }
     }

@@ -187,8 +187,12 @@ impl Tmu {
             missing &= missing - 1;
             self.decode_level(lod);
         }
+        if needed.is_power_of_two() && self.filters_bilinear() {
+            self.pair_level(needed.trailing_zeros() as usize);
+        }
         let cache = &self.cache;
-        self.texels_from::<M>(|lod| cache.level(lod), needed, alive, n, what, &mut c, out);
+        let levels = (|lod| cache.level(lod), |lod| cache.pairs(lod));
+        self.texels_from::<M>(levels, needed, alive, n, what, &mut c, out);
         self.lanes = Some(c);
     }
 
@@ -231,12 +235,33 @@ impl Tmu {
         needed
     }
 
+    /// Whether `textureMode` lets a pixel be filtered bilinearly (either filter bit; a
+    /// model that chooses the filter by LOD reads one of them).
+    #[inline(always)]
+    fn filters_bilinear(&self) -> bool {
+        let mode = TextureMode(self.texture_mode);
+        mode.tminfilter() || mode.tmagfilter()
+    }
+
+    /// The decoded LOD `lod` paired for bilinear fetches, if it is not yet
+    /// ([`crate::cache::TexelCache::pair`]).
+    #[inline(always)]
+    fn pair_level(&mut self, lod: usize) {
+        if self.cache.pairs(lod).is_none() {
+            self.cache.pair(lod, self.layout.smax(lod) + 1);
+        }
+    }
+
     /// Stages 4 and 5 of [`Tmu::texels`]: the texels of the live lanes from the decoded
-    /// levels `level(lod)` (every level in `needed` decoded), filtered and combined.
+    /// levels `level(lod)` (every level in `needed` decoded) and their pairs `pairs(lod)`
+    /// where built, filtered and combined.
     #[inline(always)]
     fn texels_from<'l, M: TexelModel>(
         &self,
-        level: impl Fn(usize) -> &'l [u32],
+        (level, pairs): (
+            impl Fn(usize) -> &'l [u32],
+            impl Fn(usize) -> Option<&'l [u64]>,
+        ),
         needed: u32,
         alive: &[bool; LANES],
         n: usize,
@@ -245,7 +270,7 @@ impl Tmu {
         out: &mut ColourLanes,
     ) {
         let profile = M::texel(&self.profile);
-        self.fetch_lanes::<M>(level, needed, alive, n, c);
+        self.fetch_lanes::<M>((level, pairs), needed, alive, n, c);
 
         let zero_frac =
             profile.lod_zerofrac == LodZeroFrac::Spec && TLod(self.t_lod).lod_zerofrac();
@@ -349,6 +374,9 @@ impl Tmu {
             if !self.cache.has(lod) {
                 self.decode_level(lod);
             }
+            if self.filters_bilinear() {
+                self.pair_level(lod);
+            }
         }
         true
     }
@@ -409,7 +437,9 @@ impl Tmu {
                 &levels[lod][..]
             }
         };
-        self.texels_from::<M>(level, needed, alive, n, what, chunk, out);
+        // A level decoded into the scratch has no pairs: its lanes take four taps.
+        let pairs = |lod: usize| cache.pairs(lod);
+        self.texels_from::<M>((level, pairs), needed, alive, n, what, chunk, out);
     }
 
     /// [`Tmu::texels_shared`] into `scratch`'s kept lanes, for the next TMU down the
@@ -595,7 +625,10 @@ impl Tmu {
     #[inline(always)]
     fn fetch_lanes<'l, M: TexelModel>(
         &self,
-        level: impl Fn(usize) -> &'l [u32],
+        (level, pairs): (
+            impl Fn(usize) -> &'l [u32],
+            impl Fn(usize) -> Option<&'l [u64]>,
+        ),
         needed: u32,
         alive: &[bool; LANES],
         n: usize,
@@ -636,9 +669,15 @@ impl Tmu {
         let tap_count = if all_point { 1 } else { 4 };
         let (taps, texels) = (&c.taps, &mut c.texels);
         if one_level {
-            let level = level(needed.trailing_zeros() as usize);
-            for k in 0..tap_count {
-                gather(level, &taps[k], n, &mut texels[k]);
+            let lod = needed.trailing_zeros() as usize;
+            match pairs(lod).filter(|_| !all_point) {
+                Some(pairs) => gather_pairs(pairs, taps, n, texels),
+                None => {
+                    let level = level(lod);
+                    for k in 0..tap_count {
+                        gather(level, &taps[k], n, &mut texels[k]);
+                    }
+                }
             }
         } else {
             for k in 0..tap_count {
@@ -658,19 +697,24 @@ impl Tmu {
             return;
         }
         // `sum(texel * weight) >> 8` per channel, the weights `(16 - u) * (16 - v)`,
-        // `u * (16 - v)`, `(16 - u) * v`, `u * v` (as `sample::blend4`, whose 16-bit lanes
-        // never carry: each channel's sum is below 2^16).
+        // `u * (16 - v)`, `(16 - u) * v`, `u * v` (as `sample::blend4`). The weights add
+        // up to 256, so each channel's sum is below 2^16 and two channels sum in one
+        // 32-bit lane without carrying into each other: blue and red, then green and
+        // alpha, each in the low and high half.
         let [fu, fv] = &c.frac;
-        for (ch, shift) in [16, 8, 0, 24].into_iter().enumerate() {
-            for i in 0..n {
-                let (u, v) = (fu[i], fv[i]);
-                let t = |k: usize| texels[k][i] >> shift & 0xff;
-                let sum = t(0) * ((16 - u) * (16 - v))
-                    + t(1) * (u * (16 - v))
-                    + t(2) * ((16 - u) * v)
-                    + t(3) * (u * v);
-                local[ch][i] = (sum >> 8) as i32;
+        const PAIR: u32 = 0x00ff_00ff;
+        for i in 0..n {
+            let (u, v) = (fu[i], fv[i]);
+            let weights = [(16 - u) * (16 - v), u * (16 - v), (16 - u) * v, u * v];
+            let (mut br, mut ga) = (0u32, 0u32);
+            for k in 0..4 {
+                br = br.wrapping_add((texels[k][i] & PAIR).wrapping_mul(weights[k]));
+                ga = ga.wrapping_add((texels[k][i] >> 8 & PAIR).wrapping_mul(weights[k]));
             }
+            local[0][i] = (br >> 24) as i32;
+            local[1][i] = (ga >> 8 & 0xff) as i32;
+            local[2][i] = (br >> 8 & 0xff) as i32;
+            local[3][i] = (ga >> 24) as i32;
         }
     }
 }
@@ -691,6 +735,41 @@ fn gather(level: &[u32], taps: &[u32; LANES], n: usize, out: &mut [u32; LANES]) 
     for (o, &tap) in out[..n].iter_mut().zip(&taps[..n]) {
         let texel = level[tap.min(last) as usize];
         *o = if tap <= last { texel } else { 0 };
+    }
+}
+
+/// [`gather`] of the four taps of the first `n` lanes from the level's pairs
+/// ([`crate::cache::TexelCache::pair`]): a load per row of taps. The second tap of a row
+/// is the first's right-hand neighbour, wrapping in the row ([`bilinear_taps`] in a
+/// wrapping S; and in a clamped S, away from the edges), or the first tap itself (a
+/// clamped S at an edge, and a point-sampled lane, whose taps are all one); the level
+/// being whole rows, the neighbour lies past the level exactly where the first tap does.
+#[inline(always)]
+fn gather_pairs(pairs: &[u64], taps: &[[u32; LANES]; 4], n: usize, texels: &mut [[u32; LANES]; 4]) {
+    let Some(last) = pairs.len().checked_sub(1) else {
+        for t in texels.iter_mut() {
+            t[..n].fill(0);
+        }
+        return;
+    };
+    // Clamped in 32 bits, as in `gather`.
+    let last = last.min(u32::MAX as usize) as u32;
+    let (top, bottom) = texels.split_at_mut(2);
+    for (row, out) in [(0, top), (2, bottom)] {
+        let (first, second) = (&taps[row], &taps[row + 1]);
+        let (left, right) = out.split_at_mut(1);
+        let (left, right) = (&mut left[0], &mut right[0]);
+        for i in 0..n {
+            let tap = first[i];
+            let pair = pairs[tap.min(last) as usize];
+            let pair = if tap <= last { pair } else { 0 };
+            left[i] = pair as u32;
+            right[i] = if second[i] == tap {
+                pair as u32
+            } else {
+                (pair >> 32) as u32
+            };
+        }
     }
 }
 
@@ -998,8 +1077,98 @@ fn combine_lanes(
 
 #[cfg(test)]
 mod tests {
-    use super::{f64_to_i32_lanes, gather, i64_to_f64, LANES};
+    use super::{
+        bilinear_taps, f64_to_i32_lanes, gather, gather_pairs, i64_to_f64, point_tap, LANES,
+    };
+    use crate::cache::TexelCache;
+    use crate::layout::Layout;
     use crate::lod::f64_to_i32_x86;
+
+    /// The pairs give what four gathers give, for the taps of bilinear fetches (wrapping
+    /// and clamped, at and past the edges) and of point-sampled lanes, on every level
+    /// shape of a 256 by 32 texture.
+    #[test]
+    fn pair_gathers_equal_four_gathers() {
+        let mem = (1 << 22) - 1;
+        let t_lod = sst1_regs::TLod(0)
+            .with_lod_aspect(3)
+            .with_lod_s_is_wider(true);
+        let layout = Layout::new(0, t_lod.0, &[0; 4], mem);
+        assert_eq!((layout.smax(0), layout.tmax(0)), (255, 31));
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for lod in 0..=8 {
+            let (smax, tmax) = (layout.smax(lod), layout.tmax(lod));
+            let len = ((smax + 1) * (tmax + 1)) as usize;
+            let texels: Vec<u32> = (0..len).map(|_| next() as u32).collect();
+            let mut cache = TexelCache::new();
+            cache.fill(lod, &layout, texels.clone());
+            assert!(cache.pairs(lod).is_none(), "no pairs before they are built");
+            cache.pair(lod, smax + 1);
+            let pairs = cache.pairs(lod).expect("paired");
+            for round in 0..64 {
+                let clamp = (round & 1 != 0, round & 2 != 0);
+                let mut taps = [[0u32; LANES]; 4];
+                for i in 0..LANES {
+                    // 24.8 LOD-0 coordinates up to three textures wide either side.
+                    let range = (smax as i64 + 1) << (lod + 8);
+                    let s = ((next() as i64).rem_euclid(range * 7) - range * 3) as i32;
+                    let t = ((next() as i64).rem_euclid(range * 7) - range * 3) as i32;
+                    let max = (smax as i32, tmax as i32);
+                    let four = if next() % 4 == 0 {
+                        [point_tap(s, t, lod as u32, max, clamp); 4]
+                    } else {
+                        bilinear_taps(s, t, lod as u32, max, clamp).0
+                    };
+                    for k in 0..4 {
+                        taps[k][i] = four[k];
+                    }
+                }
+                let mut want = [[0u32; LANES]; 4];
+                for k in 0..4 {
+                    gather(&texels, &taps[k], LANES, &mut want[k]);
+                }
+                let mut got = [[0u32; LANES]; 4];
+                gather_pairs(pairs, &taps, LANES, &mut got);
+                assert_eq!(got, want, "lod {lod}, clamp {clamp:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn pairs_follow_their_level() {
+        let layout = Layout::new(0, 0, &[0; 4], (1 << 22) - 1);
+        let mut cache = TexelCache::new();
+        let row = |v: u32| vec![v; 256 * 256];
+        cache.fill(0, &layout, row(5));
+        cache.pair(0, 256);
+        assert_eq!(cache.pairs(0).map(|p| p[0]), Some(5 | 5 << 32));
+        cache.written(0, 2, (1 << 22) - 1);
+        assert!(
+            cache.pairs(0).is_none(),
+            "a write to the level drops its pairs"
+        );
+        cache.fill(0, &layout, row(6));
+        assert!(
+            cache.pairs(0).is_none(),
+            "a level decoded again is not paired"
+        );
+        cache.pair(0, 256);
+        assert_eq!(cache.pairs(0).map(|p| p[255]), Some(6 | 6 << 32));
+        cache.clear();
+        assert!(cache.pairs(0).is_none());
+        cache.fill(1, &layout, vec![1; 3]);
+        cache.pair(1, 128);
+        assert!(
+            cache.pairs(1).is_none(),
+            "a level that is not whole rows gets no pairs"
+        );
+    }
 
     #[test]
     fn gather_reads_each_tap_and_zero_past_the_level() {
