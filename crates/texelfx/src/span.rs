@@ -171,6 +171,9 @@ impl Tmu {
         if !alive[..n].iter().any(|&a| a) {
             return;
         }
+        // The lanes past `n` are dead whatever `alive` says of them.
+        let alive = &core::array::from_fn(|i| i < n && alive[i]);
+        let n = whole_strips(n);
         if !self.cached && self.box86.lent.is_none() {
             // The generic path decodes from memory for every texel: per pixel.
             self.texels_per_pixel::<M>(place, alive, n, what, out);
@@ -420,6 +423,9 @@ impl Tmu {
         if !alive[..n].iter().any(|&a| a) {
             return;
         }
+        // The lanes past `n` are dead whatever `alive` says of them.
+        let alive = &core::array::from_fn(|i| i < n && alive[i]);
+        let n = whole_strips(n);
         let needed = self.lane_levels::<M>(place, alive, n, chunk);
         let mut missing = needed & !self.cache.valid() & !*valid;
         while missing != 0 {
@@ -718,6 +724,17 @@ impl Tmu {
         }
     }
 }
+
+/// The lanes a chunk of `n` lanes computes: `n` rounded up to whole strips of
+/// [`STRIP`] lanes (the lanes past `n` are dead: computed, never stored), so that each
+/// stage's loop runs whole vectors and no lane at a time after them.
+#[inline(always)]
+fn whole_strips(n: usize) -> usize {
+    (n.next_multiple_of(STRIP)).min(LANES)
+}
+
+/// The lanes of a strip ([`whole_strips`]): an AVX-512 vector of 32-bit lanes.
+const STRIP: usize = 16;
 
 /// `out[i] = level[taps[i]]` for the first `n` lanes, 0 where a tap is past the level.
 /// Written without a branch per lane (the load's index clamped, its value dropped after),
