@@ -187,8 +187,8 @@ impl TextureCombine {
             && matches!(alpha.add, AddLocal::ALocal)
     }
 
-    /// Whether either unit reads `c_other`, the upstream TMU's output
-    /// ([`UnitControl::reads_other`]).
+    /// Whether either unit reads `c_other`, the upstream TMU's output: unless it zeroes
+    /// it, and as the factor `a_other`.
     pub const fn reads_other(&self) -> bool {
         self.rgb.reads_other() || self.alpha.reads_other()
     }

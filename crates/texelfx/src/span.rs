@@ -11,11 +11,15 @@
 //! 3. LOD per lane (its W term, bias, dither, clamp), integer LOD, point or bilinear;
 //! 4. the levels the live lanes need are decoded into the cache (module `cache`); then
 //!    the texel indices and 4-bit bilinear fractions of every lane (a point-sampled lane
-//!    as four equal taps with zero fractions), the gather from the cache, and the
-//!    bilinear blend channel by channel (the Voodoo 2's 8-bit weights, which no model of
-//!    the SST-1 uses, per lane through `Tmu::filter`);
+//!    as four equal taps with zero fractions), the gather from the cache (two taps a
+//!    load from a level's pairs of neighbours, where one level is sampled), and the
+//!    bilinear blend two channels to a 32-bit lane (the Voodoo 2's 8-bit weights, which
+//!    no model of the SST-1 uses, per lane through `Tmu::filter`);
 //! 5. the detail factor and LOD fraction, and the combine unit (module [`crate::combine`])
 //!    channel by channel over the lanes.
+//!
+//! A chunk of `n` lanes computes whole strips of 16 ([`whole_strips`]): the lanes past
+//! `n` are dead, so that no stage ends in a loop over the last lanes one at a time.
 //!
 //! Every choice that depends only on the registers and the model (perspective, divide,
 //! LOD arithmetic, clamps, combine selections) is made once per chunk; what depends on the
