@@ -171,13 +171,10 @@ impl Tmu {
         what: LaneOutput<'_>,
         out: &mut ColourLanes,
     ) {
-        let n = n.min(LANES);
-        if !alive[..n].iter().any(|&a| a) {
+        let Some((alive, n)) = live_lanes(alive, n) else {
             return;
-        }
-        // The lanes past `n` are dead whatever `alive` says of them.
-        let alive = &core::array::from_fn(|i| i < n && alive[i]);
-        let n = whole_strips(n);
+        };
+        let alive = &alive;
         if !self.cached && self.box86.lent.is_none() {
             // The generic path decodes from memory for every texel: per pixel.
             self.texels_per_pixel::<M>(place, alive, n, what, out);
@@ -423,13 +420,10 @@ impl Tmu {
         what: LaneOutput<'_>,
         out: &mut ColourLanes,
     ) {
-        let n = n.min(LANES);
-        if !alive[..n].iter().any(|&a| a) {
+        let Some((alive, n)) = live_lanes(alive, n) else {
             return;
-        }
-        // The lanes past `n` are dead whatever `alive` says of them.
-        let alive = &core::array::from_fn(|i| i < n && alive[i]);
-        let n = whole_strips(n);
+        };
+        let alive = &alive;
         let needed = self.lane_levels::<M>(place, alive, n, chunk);
         let mut missing = needed & !self.cache.valid() & !*valid;
         while missing != 0 {
@@ -727,6 +721,16 @@ impl Tmu {
             local[3][i] = (ga >> 24) as i32;
         }
     }
+}
+
+/// A chunk of `n` lanes as its stages take it: the live lanes (`alive` below `n`: the
+/// lanes past `n` are dead whatever `alive` says of them) and the lanes computed
+/// ([`whole_strips`]); `None` where no lane is live.
+#[inline(always)]
+fn live_lanes(alive: &[bool; LANES], n: usize) -> Option<([bool; LANES], usize)> {
+    let n = n.min(LANES);
+    let live: [bool; LANES] = core::array::from_fn(|i| i < n && alive[i]);
+    live.iter().any(|&a| a).then_some((live, whole_strips(n)))
 }
 
 /// The lanes a chunk of `n` lanes computes: `n` rounded up to whole strips of
