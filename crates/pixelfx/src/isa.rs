@@ -6,7 +6,11 @@
 //! reference path); a copy only changes how many lanes one instruction handles, and
 //! which operations have a vector instruction at all (AVX-512 DQ converts 64-bit
 //! integers to doubles and multiplies them, which the textured lanes' S, T and W need;
-//! CD counts leading zeros, which the LOD's logarithm needs; F gathers texels).
+//! CD counts leading zeros, which the LOD's logarithm needs; F gathers texels). Where a
+//! stage has a form in one copy's own instructions that the compiler does not find from
+//! the lane loop (the perspective divide's conversions, with AVX-512), the lane code is
+//! told which copy it is compiled into by a type parameter ([`sst1_regs::lanes::KernelCopy`]),
+//! so the choice is made when the copy is compiled.
 //! Which copy runs is chosen per FBI ([`crate::Fbi::set_vector_isa`]): the best the CPU
 //! has unless a caller caps it.
 

@@ -7,6 +7,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Mutex, PoisonError};
 use std::time::{Duration, Instant};
 
+pub use sst1_regs::lanes::{Avx2Copy, Avx512Copy, BaselineCopy, KernelCopy};
 pub use sst1_regs::LanePlace;
 use sst1_regs::Rgba;
 
@@ -78,7 +79,7 @@ pub trait TexelSource {
     /// as every texel, and any state a later texel depends on, is what the default would
     /// give.
     #[inline(always)]
-    fn texels(
+    fn texels<K: KernelCopy>(
         &mut self,
         place: LanePlace<'_>,
         alive: &[bool; LANES],

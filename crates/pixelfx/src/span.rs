@@ -35,7 +35,7 @@ use crate::params::TriangleParams;
 use crate::pipeline::{DrawState, Source};
 use crate::profile::PixelProfile;
 use crate::profile::{AlphaTestInput, AuxWrite, ZAlphaByte};
-use crate::raster::{LanePlace, TexelSource};
+use crate::raster::{Avx2Copy, Avx512Copy, BaselineCopy, KernelCopy, LanePlace, TexelSource};
 use crate::stats::Kill;
 use crate::stats::Stats;
 use crate::{blend, fog, stipple};
@@ -855,7 +855,7 @@ impl Memory<'_> {
 /// constants it is shaded with.
 pub(crate) trait ShadeChunk {
     /// [`Shader::shade_chunk`] for these lanes.
-    fn shade<M: PixelModel, T: TexelSource>(
+    fn shade<M: PixelModel, T: TexelSource, K: KernelCopy>(
         &self,
         shader: &mut Shader<'_>,
         job: ChunkJob<'_, '_, T>,
@@ -866,33 +866,33 @@ impl ShadeChunk for RowPlace<'_> {
     /// A wide chunk, one of [`PACK`] lanes or a narrow one, as `at.n` asks
     /// ([`chunk_len`]).
     #[inline(always)]
-    fn shade<M: PixelModel, T: TexelSource>(
+    fn shade<M: PixelModel, T: TexelSource, K: KernelCopy>(
         &self,
         shader: &mut Shader<'_>,
         job: ChunkJob<'_, '_, T>,
     ) {
         if self.at.n > PACK {
             let lanes = job.consts.wide();
-            shader.shade_chunk::<M, T, LANES, _>(job, self, lanes);
+            shader.shade_chunk::<M, T, K, LANES, _>(job, self, lanes);
         } else if self.at.n > NARROW {
             let lanes = &job.consts.packed;
-            shader.shade_chunk::<M, T, PACK, _>(job, self, lanes);
+            shader.shade_chunk::<M, T, K, PACK, _>(job, self, lanes);
         } else {
             let lanes = &job.consts.narrow;
-            shader.shade_chunk::<M, T, NARROW, _>(job, self, lanes);
+            shader.shade_chunk::<M, T, K, NARROW, _>(job, self, lanes);
         }
     }
 }
 
 impl ShadeChunk for Packed {
     #[inline(always)]
-    fn shade<M: PixelModel, T: TexelSource>(
+    fn shade<M: PixelModel, T: TexelSource, K: KernelCopy>(
         &self,
         shader: &mut Shader<'_>,
         job: ChunkJob<'_, '_, T>,
     ) {
         let lanes = &job.consts.packed;
-        shader.shade_chunk::<M, T, PACK, _>(job, self, lanes);
+        shader.shade_chunk::<M, T, K, PACK, _>(job, self, lanes);
     }
 }
 
@@ -962,7 +962,7 @@ impl Shader<'_> {
         job: ChunkJob<'_, '_, T>,
         place: &C,
     ) {
-        place.shade::<M, T>(self, job);
+        place.shade::<M, T, Avx2Copy>(self, job);
     }
 
     /// [`ShadeChunk::shade`] compiled with AVX-512 enabled.
@@ -976,7 +976,7 @@ impl Shader<'_> {
         job: ChunkJob<'_, '_, T>,
         place: &C,
     ) {
-        place.shade::<M, T>(self, job);
+        place.shade::<M, T, Avx512Copy>(self, job);
     }
 
     /// [`ShadeChunk::shade`] for the baseline target.
@@ -986,14 +986,20 @@ impl Shader<'_> {
         job: ChunkJob<'_, '_, T>,
         place: &C,
     ) {
-        place.shade::<M, T>(self, job);
+        place.shade::<M, T, BaselineCopy>(self, job);
     }
 
     /// Shade one chunk: every stage of [`Fbi::shade_pixel`], a stage at a time, for the
     /// lanes `place` lays out. See [`ChunkJob`] for what it is given; `consts` are the
     /// triangle's constants at this chunk's width.
     #[inline(always)]
-    pub(crate) fn shade_chunk<M: PixelModel, T: TexelSource, const L: usize, P: Place<L>>(
+    pub(crate) fn shade_chunk<
+        M: PixelModel,
+        T: TexelSource,
+        K: KernelCopy,
+        const L: usize,
+        P: Place<L>,
+    >(
         &mut self,
         job: ChunkJob<'_, '_, T>,
         place: &P,
@@ -1077,7 +1083,7 @@ impl Shader<'_> {
             let mut wide_alive = [false; LANES];
             wide_alive[..L].copy_from_slice(&alive);
             let mut wide = [[0; LANES]; 4];
-            tex.texels(place.texel_place(), &wide_alive, n, &mut wide);
+            tex.texels::<K>(place.texel_place(), &wide_alive, n, &mut wide);
             for (lanes, w) in t.c.iter_mut().zip(&wide) {
                 lanes.copy_from_slice(&w[..L]);
             }

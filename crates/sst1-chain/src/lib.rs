@@ -10,8 +10,8 @@ use pixelfx::span::{Lanes, LANES};
 use pixelfx::{TexelSource, TmuStage};
 use sst1_regs::Rgba;
 use texelfx::{
-    ChainModel, ColourLanes, LaneOutput, LanePlace, LaneScratch, TexelModel, Tmu, TmuPixel,
-    ZERO_COLOUR,
+    BaselineCopy, ChainModel, ColourLanes, KernelCopy, LaneOutput, LanePlace, LaneScratch,
+    TexelModel, Tmu, TmuPixel, ZERO_COLOUR,
 };
 
 /// The TMUs taking part in a triangle, upstream last, run by model `M`.
@@ -106,7 +106,7 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
     /// first over all lanes, its lanes the next one's `other` lanes: for every live lane
     /// exactly what [`Chain::texel`] gives, with every model and chain wiring.
     #[inline(always)]
-    fn texels(
+    fn texels<K: KernelCopy>(
         &mut self,
         place: LanePlace<'_>,
         alive: &[bool; LANES],
@@ -116,7 +116,7 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
         match self.tmus {
             [] => zero_live_lanes(alive, n, out),
             [t0, rest @ ..] if self.wiring == ChainModel::Box86 => {
-                box86_texels::<M>(t0, rest.first_mut(), place, alive, n, out)
+                box86_texels::<M, K>(t0, rest.first_mut(), place, alive, n, out)
             }
             [t0, upstream @ ..] => {
                 // Upstream first: the last TMU sees zero, each output feeds the next down.
@@ -124,9 +124,9 @@ impl<M: TexelModel> TexelSource for Chain<'_, M> {
                 let read = upstream_read(t0, upstream);
                 let mut other = &ZERO_COLOUR;
                 for t in upstream[..read].iter_mut().rev() {
-                    other = t.texels_kept::<M>(place, alive, n, LaneOutput::Combined(other));
+                    other = t.texels_kept::<M, K>(place, alive, n, LaneOutput::Combined(other));
                 }
-                t0.texels::<M>(place, alive, n, LaneOutput::Combined(other), out);
+                t0.texels::<M, K>(place, alive, n, LaneOutput::Combined(other), out);
             }
         }
     }
@@ -194,7 +194,7 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
             x0: x,
             y,
         };
-        self.texels(place, &alive, 1, &mut out);
+        self.texels::<BaselineCopy>(place, &alive, 1, &mut out);
         let ch = |c: usize| out[c][0] as u8;
         Rgba {
             r: ch(0),
@@ -207,7 +207,7 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
     /// [`Chain::texels`] of a fully wired chain, each TMU through
     /// [`Tmu::texels_shared`].
     #[inline(always)]
-    fn texels(
+    fn texels<K: KernelCopy>(
         &mut self,
         place: LanePlace<'_>,
         alive: &[bool; LANES],
@@ -227,10 +227,10 @@ impl<M: TexelModel> TexelSource for SharedChain<'_, M> {
         let scratch = &mut upstream_scratch[..read];
         for (t, s) in upstream[..read].iter().zip(scratch.iter_mut()).rev() {
             let what = LaneOutput::Combined(other);
-            other = t.texels_kept_shared::<M>(s, place, alive, n, what);
+            other = t.texels_kept_shared::<M, K>(s, place, alive, n, what);
         }
         let what = LaneOutput::Combined(other);
-        t0.texels_shared::<M>(s0, place, alive, n, what, out);
+        t0.texels_shared::<M, K>(s0, place, alive, n, what, out);
     }
 }
 
@@ -343,7 +343,7 @@ fn stage(t: &Tmu, p: &TmuPixel) -> TmuStage {
 
 /// [`box86_texel`] for the live lanes of one chunk: the same choice, once per chunk.
 #[inline(always)]
-fn box86_texels<M: TexelModel>(
+fn box86_texels<M: TexelModel, K: KernelCopy>(
     t0: &mut Tmu,
     t1: Option<&mut Tmu>,
     place: LanePlace<'_>,
@@ -352,11 +352,11 @@ fn box86_texels<M: TexelModel>(
     out: &mut ColourLanes,
 ) {
     match Box86Route::of(t0, t1) {
-        Box86Route::Alone(t) => t.texels::<M>(place, alive, n, LaneOutput::Texel, out),
+        Box86Route::Alone(t) => t.texels::<M, K>(place, alive, n, LaneOutput::Texel, out),
         Box86Route::Combined(t0, t1, mode) => {
             let upstream = LaneOutput::Box86Upstream(mode);
-            let other = t1.texels_kept::<M>(place, alive, n, upstream);
-            t0.texels::<M>(place, alive, n, LaneOutput::Combined(other), out);
+            let other = t1.texels_kept::<M, K>(place, alive, n, upstream);
+            t0.texels::<M, K>(place, alive, n, LaneOutput::Combined(other), out);
         }
     }
 }

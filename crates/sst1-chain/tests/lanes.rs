@@ -8,7 +8,8 @@ use pixelfx::{LanePlace, TexelSource};
 use sst1_chain::Chain;
 use sst1_regs::addr;
 use texelfx::{
-    ChainModel, LodCalc, PerspDivide, RuntimeProfile, TexelProfile, TextureCacheKey, Tmu,
+    Avx512Copy, BaselineCopy, ChainModel, LodCalc, PerspDivide, RuntimeProfile, TexelProfile,
+    TextureCacheKey, Tmu,
 };
 
 /// xorshift64*: a small seeded generator, so that a failure replays.
@@ -134,7 +135,12 @@ fn chain_lanes_match_per_pixel_texels() {
                     };
                     let alive: [bool; LANES] = core::array::from_fn(|_| rng.below(5) != 0);
                     let mut out: [Lanes; 4] = [[-1; LANES]; 4];
-                    chain.texels(place, &alive, n, &mut out);
+                    // Both forms of the stages that have an AVX-512 one (`KernelCopy`).
+                    if chunk % 3 == 0 {
+                        chain.texels::<BaselineCopy>(place, &alive, n, &mut out);
+                    } else {
+                        chain.texels::<Avx512Copy>(place, &alive, n, &mut out);
+                    }
                     for i in 0..LANES {
                         let got = [0, 1, 2, 3].map(|c| out[c][i]);
                         if i >= n || !alive[i] {

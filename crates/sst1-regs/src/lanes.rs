@@ -40,3 +40,33 @@ impl LanePlace<'_> {
         }
     }
 }
+
+/// Which copy of the span kernels the lane code is compiled into (`pixelfx::isa`), as a
+/// type: the kernels are written once and inlined into each copy, and a stage that has a
+/// better form with one copy's instructions asks for it here, chosen when the copy is
+/// compiled. Every form computes the same integers.
+pub trait KernelCopy {
+    /// The copy may use AVX-512 F, DQ, CD, BW and VL (the CPU has them).
+    const AVX512: bool;
+}
+
+/// The copy for the baseline target, or one without an instruction set of its own.
+pub enum BaselineCopy {}
+
+/// The copy compiled with AVX2.
+pub enum Avx2Copy {}
+
+/// The copy compiled with AVX-512.
+pub enum Avx512Copy {}
+
+impl KernelCopy for BaselineCopy {
+    const AVX512: bool = false;
+}
+
+impl KernelCopy for Avx2Copy {
+    const AVX512: bool = false;
+}
+
+impl KernelCopy for Avx512Copy {
+    const AVX512: bool = true;
+}

@@ -38,7 +38,10 @@ use cache::TexelCache;
 pub use combine::DetailRule;
 use combine::{detail_factor, Factors, TextureCombine};
 use layout::Layout;
-pub use span::{ColourLanes, LaneOutput, LanePlace, LaneScratch, Lanes, LANES, ZERO_COLOUR};
+pub use span::{
+    Avx2Copy, Avx512Copy, BaselineCopy, ColourLanes, KernelCopy, LaneOutput, LanePlace,
+    LaneScratch, Lanes, LANES, ZERO_COLOUR,
+};
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
 pub use state::{StateMismatch, TmuState};

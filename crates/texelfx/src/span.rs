@@ -48,7 +48,9 @@ use crate::{
     PerspDivide, TexelModel, Tmu, Trilinear,
 };
 
-pub use sst1_regs::lanes::{LanePlace, Lanes, LANES};
+pub use sst1_regs::lanes::{
+    Avx2Copy, Avx512Copy, BaselineCopy, KernelCopy, LanePlace, Lanes, LANES,
+};
 
 /// R, G, B, A lanes, each 0..=255 where it counts.
 pub type ColourLanes = [Lanes; 4];
@@ -163,7 +165,7 @@ impl Tmu {
     /// [`Tmu::texel`] (or the call `what` names) gives for that pixel, bit for bit; other
     /// lanes of `out` are left as they are.
     #[inline(always)]
-    pub fn texels<M: TexelModel>(
+    pub fn texels<M: TexelModel, K: KernelCopy>(
         &mut self,
         place: LanePlace<'_>,
         alive: &[bool; LANES],
@@ -184,7 +186,7 @@ impl Tmu {
             self.rebuild_lut();
         }
         let mut c = self.lanes.take().unwrap_or_else(Chunk::new);
-        let needed = self.lane_levels::<M>(place, alive, n, &mut c);
+        let needed = self.lane_levels::<M, K>(place, alive, n, &mut c);
         let mut missing = needed & !self.cache.valid();
         while missing != 0 {
             let lod = missing.trailing_zeros() as usize;
@@ -203,7 +205,7 @@ impl Tmu {
     /// Stages 1 to 3 of [`Tmu::texels`] for the live lanes of a chunk; returns the levels
     /// they sample (bit n for LOD n).
     #[inline(always)]
-    fn lane_levels<M: TexelModel>(
+    fn lane_levels<M: TexelModel, K: KernelCopy>(
         &self,
         place: LanePlace<'_>,
         alive: &[bool; LANES],
@@ -214,7 +216,7 @@ impl Tmu {
         self.iterate_lanes(place, n, c);
         // The approximations (module `approx`), read once per chunk; all off is exact.
         let approx = self.approx;
-        coords_lanes(
+        coords_lanes::<K>(
             TextureMode(self.texture_mode),
             profile.persp_divide,
             profile.coord_rounding,
@@ -332,7 +334,7 @@ impl Tmu {
     /// its `other` lanes: the live lanes as [`Tmu::texels`] gives them, the others
     /// anything in 0..=255.
     #[inline(always)]
-    pub fn texels_kept<M: TexelModel>(
+    pub fn texels_kept<M: TexelModel, K: KernelCopy>(
         &mut self,
         place: LanePlace<'_>,
         alive: &[bool; LANES],
@@ -343,7 +345,7 @@ impl Tmu {
             .kept
             .take()
             .unwrap_or_else(|| Box::new([[0; LANES]; 4]));
-        self.texels::<M>(place, alive, n, what, &mut kept);
+        self.texels::<M, K>(place, alive, n, what, &mut kept);
         self.kept.insert(kept)
     }
 
@@ -390,7 +392,7 @@ impl Tmu {
     /// with the chunk's lanes in `scratch` (one per thread) and a level missing from the
     /// cache decoded into `scratch`.
     #[inline(always)]
-    pub fn texels_shared<M: TexelModel>(
+    pub fn texels_shared<M: TexelModel, K: KernelCopy>(
         &self,
         scratch: &mut LaneScratch,
         place: LanePlace<'_>,
@@ -406,12 +408,12 @@ impl Tmu {
             ..
         } = scratch;
         let lanes = (&mut **chunk, levels, valid);
-        self.texels_shared_in::<M>(lanes, place, alive, n, what, out);
+        self.texels_shared_in::<M, K>(lanes, place, alive, n, what, out);
     }
 
     /// [`Tmu::texels_shared`] with the parts of a [`LaneScratch`] but its kept lanes.
     #[inline(always)]
-    fn texels_shared_in<M: TexelModel>(
+    fn texels_shared_in<M: TexelModel, K: KernelCopy>(
         &self,
         (chunk, levels, valid): (&mut Chunk, &mut [Vec<u32>; 9], &mut u32),
         place: LanePlace<'_>,
@@ -424,7 +426,7 @@ impl Tmu {
             return;
         };
         let alive = &alive;
-        let needed = self.lane_levels::<M>(place, alive, n, chunk);
+        let needed = self.lane_levels::<M, K>(place, alive, n, chunk);
         let mut missing = needed & !self.cache.valid() & !*valid;
         while missing != 0 {
             let lod = missing.trailing_zeros() as usize;
@@ -449,7 +451,7 @@ impl Tmu {
     /// [`Tmu::texels_shared`] into `scratch`'s kept lanes, for the next TMU down the
     /// chain (as [`Tmu::texels_kept`]).
     #[inline(always)]
-    pub fn texels_kept_shared<'s, M: TexelModel>(
+    pub fn texels_kept_shared<'s, M: TexelModel, K: KernelCopy>(
         &self,
         scratch: &'s mut LaneScratch,
         place: LanePlace<'_>,
@@ -464,7 +466,7 @@ impl Tmu {
             valid,
         } = scratch;
         let lanes = (&mut **chunk, levels, valid);
-        self.texels_shared_in::<M>(lanes, place, alive, n, what, kept);
+        self.texels_shared_in::<M, K>(lanes, place, alive, n, what, kept);
         kept
     }
 
@@ -929,7 +931,7 @@ fn w_terms(
 /// With `float_divide` ([`crate::Approx::float_divide`]) the perspective divide is
 /// `approx::coords_f32`'s.
 #[inline(always)]
-fn coords_lanes(
+fn coords_lanes<K: KernelCopy>(
     mode: TextureMode,
     divide: PerspDivide,
     rounding: CoordRounding,
@@ -957,6 +959,11 @@ fn coords_lanes(
                 cs[i] = box86_divide(s[i], oow);
                 ct[i] = box86_divide(t[i], oow);
             }
+        }
+        #[cfg(target_arch = "x86_64")]
+        (true, PerspDivide::Double) if K::AVX512 && wide::has_avx512() => {
+            // SAFETY: the CPU has AVX-512 F and DQ (checked just above).
+            unsafe { wide::coords_double((s, t, w), n, floor, cs, ct) }
         }
         (true, PerspDivide::Double) => {
             // MAME: S * (256 / W) in doubles, truncated, or floored (see `Tmu::sample`).
@@ -988,6 +995,71 @@ fn coords_lanes(
                 cs[i] = 0;
                 ct[i] = 0;
             }
+        }
+    }
+}
+
+/// Forms of the lane stages with AVX-512's own instructions, for the AVX-512 copy of the
+/// kernels ([`KernelCopy::AVX512`]): the same integers as the forms written for every
+/// copy (tests `wide_divide_equals_the_lane_divide` and the identity tests).
+#[cfg(target_arch = "x86_64")]
+mod wide {
+    use super::{f64_to_i32_lanes, i64_to_f64, Lanes, LANES};
+    use std::arch::x86_64::*;
+
+    /// Whether the CPU has what [`coords_double`] uses. `KernelCopy::AVX512` says which
+    /// copy the code is compiled into, which only the CPU's check makes safe to run.
+    #[inline(always)]
+    pub(super) fn has_avx512() -> bool {
+        std::arch::is_x86_feature_detected!("avx512f")
+            && std::arch::is_x86_feature_detected!("avx512dq")
+    }
+
+    /// `coords_lanes`'s doubles divide (MAME's `S * (256 / W)`), eight lanes an
+    /// instruction: DQ converts the 64-bit S, T, W to doubles directly, rounding to
+    /// nearest as the exact split conversion `i64_to_f64` does, and the conversion back
+    /// truncates, or rounds down for `floor`, with "integer indefinite" (`i32::MIN`) for
+    /// NaN and out of range, which is what `f64_to_i32_lanes` computes.
+    ///
+    /// # Safety
+    /// The CPU must have AVX-512 F and DQ.
+    #[target_feature(enable = "avx512f,avx512dq")]
+    pub(super) unsafe fn coords_double(
+        (s, t, w): (&[i64; LANES], &[i64; LANES], &[i64; LANES]),
+        n: usize,
+        floor: bool,
+        cs: &mut Lanes,
+        ct: &mut Lanes,
+    ) {
+        const DOWN: i32 = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+        let n = n.min(LANES);
+        let whole = n - n % 8;
+        let scale = _mm512_set1_pd(256.0);
+        for i in (0..whole).step_by(8) {
+            // SAFETY: `i + 8 <= LANES`, within each array; the loads and stores are
+            // unaligned.
+            unsafe {
+                let load = |v: &[i64; LANES]| {
+                    _mm512_cvtepi64_pd(_mm512_loadu_si512(v.as_ptr().add(i).cast()))
+                };
+                let recip = _mm512_div_pd(scale, load(w));
+                let (qs, qt) = (_mm512_mul_pd(load(s), recip), _mm512_mul_pd(load(t), recip));
+                let (rs, rt) = if floor {
+                    (
+                        _mm512_cvt_roundpd_epi32::<DOWN>(qs),
+                        _mm512_cvt_roundpd_epi32::<DOWN>(qt),
+                    )
+                } else {
+                    (_mm512_cvttpd_epi32(qs), _mm512_cvttpd_epi32(qt))
+                };
+                _mm256_storeu_si256(cs.as_mut_ptr().add(i).cast(), rs);
+                _mm256_storeu_si256(ct.as_mut_ptr().add(i).cast(), rt);
+            }
+        }
+        for i in whole..n {
+            let recip = 256.0 / i64_to_f64(w[i]);
+            cs[i] = f64_to_i32_lanes(i64_to_f64(s[i]) * recip, floor);
+            ct[i] = f64_to_i32_lanes(i64_to_f64(t[i]) * recip, floor);
         }
     }
 }
@@ -1222,6 +1294,67 @@ mod tests {
         }
         for v in values {
             assert_eq!(i64_to_f64(v).to_bits(), (v as f64).to_bits(), "{v:#x}");
+        }
+    }
+
+    /// AVX-512's doubles divide against the form every copy runs, over random S, T, W
+    /// and the edges: zero W (infinities and NaN), the extremes, quotients out of range
+    /// and on halves, every count of lanes. Runs where the CPU has AVX-512.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn wide_divide_equals_the_lane_divide() {
+        if !super::wide::has_avx512() {
+            eprintln!("no AVX-512 here: the wide divide is not run");
+            return;
+        }
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let edges = [
+            0,
+            1,
+            -1,
+            2,
+            1 << 31,
+            3 << 30,
+            i64::MIN,
+            i64::MAX,
+            1 << 40,
+            -(1 << 40),
+        ];
+        for round in 0..4000 {
+            let mut lanes = [[0i64; LANES]; 3];
+            for v in lanes.iter_mut().flatten() {
+                let r = next();
+                *v = match r % 4 {
+                    0 => edges[(r >> 8) as usize % edges.len()],
+                    1 => (r as i64) >> 20,
+                    _ => (r as i64) >> (r % 64),
+                };
+            }
+            let [s, t, w] = &lanes;
+            let n = round % (LANES + 1);
+            let floor = round % 2 == 0;
+            let (mut cs, mut ct) = ([7; LANES], [7; LANES]);
+            // SAFETY: the CPU has AVX-512 F and DQ (checked above).
+            unsafe { super::wide::coords_double((s, t, w), n, floor, &mut cs, &mut ct) };
+            for i in 0..LANES {
+                let (ws, wt) = if i < n {
+                    let recip = 256.0 / i64_to_f64(w[i]);
+                    (
+                        f64_to_i32_lanes(i64_to_f64(s[i]) * recip, floor),
+                        f64_to_i32_lanes(i64_to_f64(t[i]) * recip, floor),
+                    )
+                } else {
+                    (7, 7)
+                };
+                let at = (s[i], t[i], w[i], floor);
+                assert_eq!((cs[i], ct[i]), (ws, wt), "lane {i} of {n}: {at:?}");
+            }
         }
     }
 

@@ -989,7 +989,12 @@ fn span_lanes_match_per_pixel_texels() {
                     _ => LaneOutput::Combined(&other),
                 };
                 let mut out: ColourLanes = [[-1; LANES]; 4];
-                tmu.texels::<R>(place, &alive, n, what, &mut out);
+                // Both forms of the stages that have an AVX-512 one (`KernelCopy`).
+                if chunk % 3 == 0 {
+                    tmu.texels::<R, BaselineCopy>(place, &alive, n, what, &mut out);
+                } else {
+                    tmu.texels::<R, Avx512Copy>(place, &alive, n, what, &mut out);
+                }
                 for i in 0..LANES {
                     let got = [0, 1, 2, 3].map(|c| out[c][i]);
                     if i >= n || !alive[i] {
