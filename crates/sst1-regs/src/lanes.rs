@@ -46,7 +46,8 @@ impl LanePlace<'_> {
 /// better form with one copy's instructions asks for it here, chosen when the copy is
 /// compiled. Every form computes the same integers.
 pub trait KernelCopy {
-    /// The copy may use AVX-512 F, DQ, CD, BW and VL (the CPU has them).
+    /// The copy is compiled with AVX-512 F, DQ, CD, BW and VL. (The type proves nothing
+    /// of the CPU: a form that uses these instructions itself checks that it has them.)
     const AVX512: bool;
 }
 

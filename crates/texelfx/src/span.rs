@@ -966,13 +966,8 @@ fn coords_lanes<K: KernelCopy>(
             unsafe { wide::coords_double((s, t, w), n, floor, cs, ct) }
         }
         (true, PerspDivide::Double) => {
-            // MAME: S * (256 / W) in doubles, truncated, or floored (see `Tmu::sample`).
-            let div = |v: i64, recip: f64| f64_to_i32_lanes(i64_to_f64(v) * recip, floor);
             for i in 0..n {
-                // `span_recip`, with a conversion that vectorises.
-                let recip = 256.0 / i64_to_f64(w[i]);
-                cs[i] = div(s[i], recip);
-                ct[i] = div(t[i], recip);
+                (cs[i], ct[i]) = divide_double(s[i], t[i], w[i], floor);
             }
         }
         (false, _) if floor => {
@@ -1004,7 +999,7 @@ fn coords_lanes<K: KernelCopy>(
 /// copy (tests `wide_divide_equals_the_lane_divide` and the identity tests).
 #[cfg(target_arch = "x86_64")]
 mod wide {
-    use super::{f64_to_i32_lanes, i64_to_f64, Lanes, LANES};
+    use super::{divide_double, Lanes, LANES};
     use std::arch::x86_64::*;
 
     /// Whether the CPU has what [`coords_double`] uses. `KernelCopy::AVX512` says which
@@ -1057,11 +1052,19 @@ mod wide {
             }
         }
         for i in whole..n {
-            let recip = 256.0 / i64_to_f64(w[i]);
-            cs[i] = f64_to_i32_lanes(i64_to_f64(s[i]) * recip, floor);
-            ct[i] = f64_to_i32_lanes(i64_to_f64(t[i]) * recip, floor);
+            (cs[i], ct[i]) = divide_double(s[i], t[i], w[i], floor);
         }
     }
+}
+
+/// One lane of the doubles divide (MAME: S * (256 / W) in doubles, truncated, or floored;
+/// see `Tmu::sample`): the texture coordinates S and T, with `span_recip`'s reciprocal
+/// and conversions that vectorise.
+#[inline(always)]
+fn divide_double(s: i64, t: i64, w: i64, floor: bool) -> (i32, i32) {
+    let recip = 256.0 / i64_to_f64(w);
+    let div = |v: i64| f64_to_i32_lanes(i64_to_f64(v) * recip, floor);
+    (div(s), div(t))
 }
 
 /// `v as f64` (rounded to nearest, ties to even) from conversions of 32-bit halves, which
@@ -1175,7 +1178,8 @@ fn combine_lanes(
 #[cfg(test)]
 mod tests {
     use super::{
-        bilinear_taps, f64_to_i32_lanes, gather, gather_pairs, i64_to_f64, point_tap, LANES,
+        bilinear_taps, divide_double, f64_to_i32_lanes, gather, gather_pairs, i64_to_f64,
+        point_tap, LANES,
     };
     use crate::cache::TexelCache;
     use crate::layout::Layout;
@@ -1344,11 +1348,7 @@ mod tests {
             unsafe { super::wide::coords_double((s, t, w), n, floor, &mut cs, &mut ct) };
             for i in 0..LANES {
                 let (ws, wt) = if i < n {
-                    let recip = 256.0 / i64_to_f64(w[i]);
-                    (
-                        f64_to_i32_lanes(i64_to_f64(s[i]) * recip, floor),
-                        f64_to_i32_lanes(i64_to_f64(t[i]) * recip, floor),
-                    )
+                    divide_double(s[i], t[i], w[i], floor)
                 } else {
                     (7, 7)
                 };
