@@ -511,8 +511,7 @@ impl Fbi {
 
     /// Shade `rows` (a triangle's, clipped) in bands taken from one queue by the render
     /// threads, each thread with its own counters, added up afterwards, and its own view
-    /// of the texel source ([`TexelSource::band`]). A band ([`band_rows`], or
-    /// [`monotone_bands`] where it applies) is rows whose
+    /// of the texel source ([`TexelSource::band`]). A band ([`band_rows`]) is rows whose
     /// words (colour and aux alike, at the same offsets) meet no other band's: a row whose
     /// lanes run past the frame-buffer row's end into the next row, as the single walk
     /// lets them, shares a band with the rows it meets, and so do two rows on one
@@ -538,12 +537,8 @@ impl Fbi {
         if st.color_path.texture_enable() && st.fetch_texel && !tex.share() {
             return false;
         }
-        // The pieces band after band, so that each band's are one slice of them.
-        let (in_bands, bands) = monotone_bands(rows, row_pixels).unwrap_or_else(|| {
-            let pieces = row_pieces(rows, row_pixels);
-            let (order, bands) = band_rows(&pieces, row_pixels);
-            (order.iter().map(|&i| pieces[i]).collect(), bands)
-        });
+        let pieces = row_pieces(rows, row_pixels);
+        let (order, bands) = band_rows(&pieces, row_pixels);
         if bands.len() < 2 {
             return false;
         }
@@ -575,6 +570,8 @@ impl Fbi {
         };
         let colour_bands = cut_bands(&bands, colour_words, colour.start, Some(st.dest));
         let aux_bands = cut_bands(&bands, aux_words, aux.start, st.aux);
+        // The pieces band after band, so that each band's are one slice of them.
+        let in_bands: Vec<Piece> = order.iter().map(|&i| pieces[i]).collect();
         let parts = bands.iter().zip(colour_bands).zip(aux_bands);
         let jobs: Vec<BandJob<'_, '_>> = parts
             .map(|((band, colour), aux)| BandJob {
@@ -810,46 +807,6 @@ fn band_rows(pieces: &[Piece], row_pixels: i64) -> (Vec<usize>, Vec<Band>) {
         order[b.rows.clone()].sort_unstable();
     }
     (order, bands)
-}
-
-/// What [`row_pieces`] and [`band_rows`] give, pieces band after band, for the walk of
-/// almost every large triangle, without their sort: rows that each have words within
-/// one frame-buffer row (at or below row 0, ending right of column 0 and within the
-/// pitch: one piece each) on
-/// frame-buffer rows that rise or fall strictly along the walk. Their words then meet
-/// no other row's and lie in the rows' order (or its reverse), so the bands are runs of
-/// [`BAND_ROWS`] rows in memory order. `None` for any other walk. (The general path's
-/// sort and index lists were a tenth of a large Gouraud triangle's wall time on two
-/// threads, with the helper idle meanwhile.)
-fn monotone_bands(rows: &[Row], row_pixels: i64) -> Option<(Vec<Piece>, Vec<Band>)> {
-    let within = |r: &Row| r.scry >= 0 && r.stop > 0 && i64::from(r.stop) <= row_pixels;
-    if !rows.iter().all(within) {
-        return None;
-    }
-    let rising = rows.windows(2).all(|w| w[0].scry < w[1].scry);
-    if !rising && !rows.windows(2).all(|w| w[0].scry > w[1].scry) {
-        return None;
-    }
-    let n = rows.len();
-    let mut pieces = Vec::with_capacity(n);
-    let mut bands = Vec::with_capacity(n.div_ceil(BAND_ROWS));
-    for k in (0..n).step_by(BAND_ROWS) {
-        let end = (k + BAND_ROWS).min(n);
-        // Memory order: from the walk's first rows when they rise, its last when they fall.
-        let run = &rows[if rising { k..end } else { n - end..n - k }];
-        let at = pieces.len();
-        pieces.extend(run.iter().map(|&row| Piece {
-            row,
-            row_start: row.start,
-        }));
-        let words = run.iter().filter_map(|r| row_words(r, row_pixels));
-        let hull = words.reduce(|a, b| a.start.min(b.start)..a.end.max(b.end));
-        bands.push(Band {
-            rows: at..pieces.len(),
-            words: hull,
-        });
-    }
-    Some((pieces, bands))
 }
 
 /// The most render threads [`Fbi::set_threads`] takes.
@@ -1158,55 +1115,6 @@ mod tests {
             past_pitch > 30 && cut_at_pitch > 20,
             "{past_pitch} {cut_at_pitch}"
         );
-    }
-
-    /// [`monotone_bands`] gives the pieces and bands of [`row_pieces`] and [`band_rows`],
-    /// for random triangles' walks placed on the frame buffer's rows or partly above
-    /// them, with and without the Y-origin flip, on rows of 256, 640 and 1024 words; and
-    /// declines the walks it is not for.
-    #[test]
-    fn monotone_bands_are_the_general_bands() {
-        let ranges = [1024, 4096, 8192, 1024, 40000];
-        let triangles = setup::random_triangles(0x51_7cc1_b727_220a, 1000, &ranges);
-        let (mut taken, mut declined) = (0, 0);
-        for (k, p) in triangles.enumerate() {
-            let row_pixels = [256, 640, 1024][k % 3];
-            let flip = k % 4 < 2;
-            let shift = [1100, 1200, 300][k % 3];
-            let rows: Vec<Row> = setup::spans(&p, EdgeRounding::FloorHalfDown)
-                .map(|s| Row {
-                    y: s.y,
-                    scry: if flip {
-                        (1000 - s.y) & 0x3ff
-                    } else {
-                        s.y + shift
-                    },
-                    start: s.start + [128, 320, 512][k % 3],
-                    stop: s.stop + [128, 320, 512][k % 3],
-                    prow: s.y,
-                })
-                .collect();
-            let pieces = row_pieces(&rows, row_pixels);
-            let (order, bands) = band_rows(&pieces, row_pixels);
-            let general: Vec<(i32, i32, i32, i32)> = order
-                .iter()
-                .map(|&i| pieces[i])
-                .map(|q| (q.row.y, q.row.start, q.row.stop, q.row_start))
-                .collect();
-            match monotone_bands(&rows, row_pixels) {
-                Some((mono, mono_bands)) => {
-                    let mono: Vec<(i32, i32, i32, i32)> = mono
-                        .iter()
-                        .map(|q| (q.row.y, q.row.start, q.row.stop, q.row_start))
-                        .collect();
-                    assert_eq!(mono, general, "{p:?}");
-                    assert_eq!(mono_bands, bands, "{p:?}");
-                    taken += 1;
-                }
-                None => declined += 1,
-            }
-        }
-        assert!(taken > 200 && declined > 100, "{taken} {declined}");
     }
 
     /// The bounding box never holds fewer pixels than a walk covers, for every walk, on
