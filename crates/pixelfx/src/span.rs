@@ -374,7 +374,7 @@ impl Packed {
 
     /// A 32-bit iterator at every lane, as [`Iterated::at`] computes it.
     #[inline(always)]
-    fn linear(&self, start: i32, gx: i32, gy: i32) -> [i32; PACK] {
+    fn linear<const L: usize>(&self, start: i32, gx: i32, gy: i32) -> [i32; L] {
         lanes(|i| {
             start
                 .wrapping_add(self.dy[i].wrapping_mul(gy))
@@ -391,7 +391,8 @@ impl Packed {
     }
 }
 
-impl Place<PACK> for Packed {
+/// The first `L` lanes of the pack (`L` at most [`PACK`]; the pack's `n` at most `L`).
+impl<const L: usize> Place<L> for Packed {
     #[inline(always)]
     fn n(&self) -> usize {
         self.n
@@ -419,13 +420,13 @@ impl Place<PACK> for Packed {
     }
 
     #[inline(always)]
-    fn colour(&self, c: usize) -> [i32; PACK] {
+    fn colour(&self, c: usize) -> [i32; L] {
         let p = &self.params;
         self.linear(p.start[c], p.dx[c], p.dy[c])
     }
 
     #[inline(always)]
-    fn z(&self) -> [i32; PACK] {
+    fn z(&self) -> [i32; L] {
         let p = &self.params;
         self.linear(p.start_z, p.dzdx, p.dzdy)
     }
@@ -449,16 +450,16 @@ impl Place<PACK> for Packed {
     }
 
     #[inline(always)]
-    fn dither_entries(&self, dither: &Dither, kind: DitherKind) -> [i32; PACK] {
+    fn dither_entries(&self, dither: &Dither, kind: DitherKind) -> [i32; L] {
         lanes(|i| dither.matrix_value(kind, self.x[i] as u32, self.prow[i] as u32) as i32)
     }
 
     #[inline(always)]
-    fn load(&self, ram: &[u16], buffer: Buffer) -> ([i32; PACK], [bool; PACK]) {
-        let mut v = [0; PACK];
-        let mut has = [false; PACK];
+    fn load(&self, ram: &[u16], buffer: Buffer) -> ([i32; L], [bool; L]) {
+        let mut v = [0; L];
+        let mut has = [false; L];
         if let Some(base) = self.base(buffer) {
-            for i in 0..self.n.min(PACK) {
+            for i in 0..self.n.min(L) {
                 v[i] = i32::from(ram[base + self.word[i]]);
                 has[i] = true;
             }
@@ -471,19 +472,19 @@ impl Place<PACK> for Packed {
         &self,
         ram: &[u16],
         func: CompareFunction,
-        source: &[i32; PACK],
+        source: &[i32; L],
         no_aux: bool,
-    ) -> [bool; PACK] {
-        let (dst, has) = self.load(ram, Buffer::Aux);
-        let mut fails = [false; PACK];
+    ) -> [bool; L] {
+        let (dst, has): ([i32; L], [bool; L]) = self.load(ram, Buffer::Aux);
+        let mut fails = [false; L];
         compare_fails(func, source.iter().copied().zip(dst), &mut fails);
         lanes(|i| (fails[i] & has[i]) | (no_aux & !has[i]))
     }
 
     #[inline(always)]
-    fn store(&self, ram: &mut [u16], buffer: Buffer, alive: &[bool; PACK], values: &[u16; PACK]) {
+    fn store(&self, ram: &mut [u16], buffer: Buffer, alive: &[bool; L], values: &[u16; L]) {
         if let Some(base) = self.base(buffer) {
-            for i in 0..self.n.min(PACK) {
+            for i in 0..self.n.min(L) {
                 if alive[i] {
                     ram[base + self.word[i]] = values[i];
                 }
@@ -497,11 +498,11 @@ impl Place<PACK> for Packed {
         ram: &mut [u16],
         dither: &Dither,
         kind: DitherKind,
-        rgb: [&[i32; PACK]; 3],
-        alive: &[bool; PACK],
+        rgb: [&[i32; L]; 3],
+        alive: &[bool; L],
     ) {
-        let entries = self.dither_entries(dither, kind);
-        let mut packed = [0u16; PACK];
+        let entries: [i32; L] = self.dither_entries(dither, kind);
+        let mut packed = [0u16; L];
         dither.rgb565_lanes(kind, &entries, rgb.map(|c| &c[..]), &mut packed);
         self.store(ram, Buffer::Colour, alive, &packed);
     }
@@ -891,8 +892,15 @@ impl ShadeChunk for Packed {
         shader: &mut Shader<'_>,
         job: ChunkJob<'_, '_, T>,
     ) {
-        let lanes = &job.consts.packed;
-        shader.shade_chunk::<M, T, K, PACK, _>(job, self, lanes);
+        // A pack of a few pixels (a triangle of a few) is a narrow chunk: every loop of
+        // a chunk runs over all its lanes.
+        if self.n > NARROW {
+            let lanes = &job.consts.packed;
+            shader.shade_chunk::<M, T, K, PACK, _>(job, self, lanes);
+        } else {
+            let lanes = &job.consts.narrow;
+            shader.shade_chunk::<M, T, K, NARROW, _>(job, self, lanes);
+        }
     }
 }
 
