@@ -395,6 +395,8 @@ impl Packed {
 impl<const L: usize> Place<L> for Packed {
     #[inline(always)]
     fn n(&self) -> usize {
+        // The lanes' arrays hold `PACK`: a wider chunk of a pack does not compile.
+        const { assert!(L <= PACK) };
         self.n
     }
 
