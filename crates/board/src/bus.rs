@@ -185,9 +185,29 @@ impl Board {
     #[inline(always)]
     fn tmu_register(&mut self, chips: u32, offset: u32, value: u32) {
         if self.render_lent() {
-            self.lent_tmus(deferred::tmu_register, [chips, offset, value]);
+            self.lent_tmu_register(chips, offset, value);
+        } else if let Some(w) = texelfx::StwParams::decode(offset, value) {
+            // Decoded once; the TMUs the mask selects (bit 1 TMU 0, ...), one by one.
+            let mut mask = (chips >> 1) & 7;
+            while mask != 0 {
+                if let Some(tmu) = self.tmus.get_mut(mask.trailing_zeros() as usize) {
+                    tmu.write_stw(w);
+                }
+                mask &= mask - 1;
+            }
         } else {
             deferred::tmu_register(&mut self.tmus, [chips, offset, value]);
+        }
+    }
+
+    /// A register write to the TMUs of `chips` while the render thread holds them: the
+    /// S, T, W registers noted here for the next textured triangle, the rest queued.
+    #[inline(always)]
+    fn lent_tmu_register(&mut self, chips: u32, offset: u32, value: u32) {
+        if let Some(w) = texelfx::StwParams::decode(offset, value) {
+            self.lent_stw.write(chips, w);
+        } else {
+            self.lent_tmus(deferred::tmu_register, [chips, offset, value]);
         }
     }
 
@@ -310,15 +330,15 @@ impl Board {
             }
         }
         let (pixels, spans) = if let Some(dest) = deferred_dest {
-            let draw: pixelfx::DrawJob<Vec<Tmu>> = if texturing {
+            let draw: pixelfx::DrawJob<Vec<Tmu>, _> = if texturing {
                 deferred::draw_textured::<M>
             } else {
-                pixelfx::draw_untextured::<M, Vec<Tmu>>
+                pixelfx::draw_untextured::<M, Vec<Tmu>, _>
             };
-            let job = self.fbi.triangle_job::<M, _>(dest, draw, tex_adjust);
+            let job = self.fbi.triangle_job::<M, _, _>(dest, draw);
             // Timed when the render thread gives the memory back, from its walk's counts.
             let work = self.triangle_work(cp, texturing, 0, 0);
-            self.defer_triangle(job, work);
+            self.defer_triangle(job, texturing, tex_adjust, work);
             return;
         } else {
             let before = self.fbi.stats;

@@ -18,7 +18,7 @@ use std::collections::VecDeque;
 use pixelfx::pipeline::DrawState;
 use pixelfx::{Fbi, RenderThread, TriangleJob, WalkCounts};
 use sst1_chain::Chain;
-use texelfx::Tmu;
+use texelfx::{StwPending, StwWrite, Tmu};
 
 use crate::model::ChipModel;
 use crate::timing::{Timing, TriangleWork};
@@ -46,24 +46,87 @@ pub(crate) fn tmu_texture(tmus: &mut Vec<Tmu>, [tmu, offset, value]: [u32; 3]) {
     }
 }
 
-/// A textured triangle's walk on the render thread, as the board draws one: the TMUs'
-/// subpixel correction (`adjust`, written back to their start registers), their
-/// per-triangle state, then the walk with the TMU chain as texel source.
+/// A textured triangle's walk on the render thread, as the board draws one: per TMU
+/// (`tmu_jobs`, one each), the S, T, W register writes since the triangle before and the
+/// subpixel correction (written back to the start registers), then the TMUs'
+/// per-triangle state and the walk with the TMU chain as texel source.
 // `&mut Vec`: the render thread's chips are the board's `Vec<Tmu>` (`RenderThread<C>`).
 #[allow(clippy::ptr_arg)]
 pub(crate) fn draw_textured<M: ChipModel>(
     twin: &mut Fbi,
     tmus: &mut Vec<Tmu>,
     st: &DrawState,
-    adjust: Option<(i32, i32)>,
+    tmu_jobs: &[TmuJob],
 ) {
-    for t in tmus.iter_mut() {
-        if let Some((dx, dy)) = adjust {
+    for (t, job) in tmus.iter_mut().zip(tmu_jobs) {
+        t.apply_stw(&job.stw);
+        if let Some((dx, dy)) = job.adjust {
             t.subpixel_adjust(dx, dy);
         }
         t.begin_triangle::<M>();
     }
     twin.shade_job::<M, _>(st, &mut Chain::<M>::new(tmus));
+}
+
+/// What a textured triangle's job carries for one TMU ([`draw_textured`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct TmuJob {
+    /// The S, T, W register writes since the TMU's last triangle.
+    stw: StwPending,
+    /// The subpixel correction's 12.4 offsets, if the triangle has one.
+    adjust: Option<(i32, i32)>,
+}
+
+/// The TMUs' S, T, W register writes while the render thread holds the TMUs: noted on
+/// the calling thread and sent with the next textured triangle's job
+/// ([`draw_textured`]), rather than queued write by write behind the triangles (a write
+/// queued there cost the render thread about 55 instructions, and a textured triangle
+/// has 9 per TMU; docs/performance.md). Nothing but the triangles reads these
+/// registers, so only the triangles need them in order; the board hands the last ones
+/// over when it takes the TMUs back ([`Board::settle`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct LentStw {
+    /// TMU `i`'s writes, for the `tmus` TMUs of the board.
+    pending: [StwPending; 3],
+    tmus: usize,
+}
+
+impl LentStw {
+    /// For a board of `tmus` TMUs.
+    pub(crate) fn new(tmus: usize) -> Self {
+        Self {
+            tmus: tmus.min(3),
+            ..Self::default()
+        }
+    }
+
+    /// An S, T, W register write ([`StwParams::decode`]) to the TMUs of the chip mask
+    /// `chips` (bit 1 TMU 0, bit 2 TMU 1, bit 3 TMU 2).
+    #[inline(always)]
+    pub(crate) fn write(&mut self, chips: u32, w: StwWrite) {
+        let mut mask = (chips >> 1) & 7;
+        while mask != 0 {
+            self.pending[mask.trailing_zeros() as usize].note(w);
+            mask &= mask - 1;
+        }
+    }
+
+    /// A textured triangle's jobs for the TMUs, with the subpixel correction `adjust`;
+    /// the writes so far go with them.
+    pub(crate) fn take_jobs(&mut self, adjust: Option<(i32, i32)>) -> ([TmuJob; 3], usize) {
+        let jobs = std::array::from_fn(|i| TmuJob {
+            stw: self.pending[i].take(),
+            adjust,
+        });
+        (jobs, self.tmus)
+    }
+
+    /// Hand the writes so far over to `tmus`.
+    pub(crate) fn hand_over(&mut self, tmus: &mut [Tmu]) {
+        for (t, p) in tmus.iter_mut().zip(&mut self.pending) {
+            t.apply_stw(&p.take());
+        }
+    }
 }
 
 /// The timing model's events while the render thread holds the memory: the bus writes
@@ -94,7 +157,7 @@ impl TimingLog {
     /// `timing` back.
     fn charge_counted<'t>(
         &mut self,
-        render: &RenderThread<Vec<Tmu>>,
+        render: &RenderThread<Vec<Tmu>, TmuJob>,
         mut timing: Option<&'t mut Timing>,
     ) -> Option<&'t mut Timing> {
         while let Some(counts) = render.counted() {
@@ -163,10 +226,14 @@ impl Board {
         let Some(render) = self.render.as_mut() else {
             return;
         };
+        if !render.is_lent() {
+            return;
+        }
         if let Err(e) = render.settle(&mut self.fbi, &mut self.tmus) {
             self.render_failed(e);
             return;
         }
+        self.lent_stw.hand_over(&mut self.tmus);
         // Every batch's counts are there once the memory is back.
         let timing = self.timing_on.then_some(&mut self.timing);
         if let Some(timing) = self.timing_log.charge_counted(render, timing) {
@@ -175,13 +242,30 @@ impl Board {
     }
 
     /// Queue a triangle for the render thread ([`Board::start_render`] said it runs),
-    /// lending it the memory and the TMUs if it does not hold them; the timing model
-    /// charges `work` with the walk's counts when the memory comes back.
-    pub(crate) fn defer_triangle(&mut self, job: TriangleJob<Vec<Tmu>>, work: TriangleWork) {
+    /// lending it the memory and the TMUs if it does not hold them, with the TMUs' jobs
+    /// if it is `textured` (their S, T, W register writes since the last, and the
+    /// subpixel correction `tex_adjust`); the timing model charges `work` with the walk's
+    /// counts when the memory comes back.
+    // Inlined into its one caller (measured: out of line, 30 instructions more per
+    // 10-pixel triangle on the calling thread).
+    #[inline(always)]
+    pub(crate) fn defer_triangle(
+        &mut self,
+        job: TriangleJob<Vec<Tmu>, TmuJob>,
+        textured: bool,
+        tex_adjust: Option<(i32, i32)>,
+        work: TriangleWork,
+    ) {
         let Some(render) = self.render.as_mut() else {
             return;
         };
-        let sent = match render.push(&mut self.fbi, &mut self.tmus, job) {
+        let pushed = if textured {
+            let (tmu_jobs, tmus) = self.lent_stw.take_jobs(tex_adjust);
+            render.push(&mut self.fbi, &mut self.tmus, job, &tmu_jobs[..tmus])
+        } else {
+            render.push(&mut self.fbi, &mut self.tmus, job, &[])
+        };
+        let sent = match pushed {
             Ok(sent) => sent,
             Err(e) => return self.render_failed(e),
         };

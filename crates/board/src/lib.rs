@@ -128,7 +128,9 @@ pub struct Board {
     /// The render thread small triangles are shaded on during the writes of a
     /// [`Deferred`] run, with more than one render thread (started at the first); it
     /// holds the TMUs with the frame-buffer memory.
-    render: Option<pixelfx::RenderThread<Vec<Tmu>>>,
+    render: Option<pixelfx::RenderThread<Vec<Tmu>, deferred::TmuJob>>,
+    /// The TMUs' S, T, W register writes while the render thread holds the TMUs.
+    lent_stw: deferred::LentStw,
     /// Whether a triangle command may go to the render thread: only inside the writes of
     /// a [`Deferred`] run.
     deferring: bool,
@@ -156,6 +158,7 @@ impl Board {
             dac: video::Dac::default(),
             timing_on: true,
             render: None,
+            lent_stw: deferred::LentStw::new(config.tmus as usize),
             deferring: false,
             timing_log: deferred::TimingLog::default(),
         }

@@ -59,20 +59,22 @@ const SPIN: Duration = Duration::from_micros(200);
 const SETTLE_SPIN: Duration = Duration::from_micros(500);
 
 /// One triangle to shade: what its command captured.
-pub struct TriangleJob<C> {
+pub struct TriangleJob<C, X> {
     st: DrawState,
     params: TriangleParams,
     /// The walk of the board's model, with its texel source made from the lent chips
-    /// (`tex_adjust` passed on).
-    draw: DrawJob<C>,
-    /// The subpixel correction's 12.4 offsets, for chips that apply it first (the TMUs'
-    /// start registers of a textured triangle); `None`: none.
-    tex_adjust: Option<(i32, i32)>,
+    /// (the triangle's chip state passed on).
+    draw: DrawJob<C, X>,
+    /// How many chip states the triangle has ([`RenderThread::push`]), the next in its
+    /// batch's list.
+    chip_states: u8,
 }
 
-/// A job's walk: the twin, the lent chips, the captured state and the triangle's
-/// `tex_adjust`.
-pub type DrawJob<C> = fn(&mut Fbi, &mut C, &DrawState, Option<(i32, i32)>);
+/// A job's walk: the twin, the lent chips, the captured state and the triangle's chip
+/// states: what its command captured for the lent chips, if anything (the board's: the
+/// TMUs' S, T, W registers of a textured triangle, one per TMU, which it keeps while it
+/// lends them).
+pub type DrawJob<C, X> = fn(&mut Fbi, &mut C, &DrawState, &[X]);
 
 /// A write to the lent chips (a TMU register or texture memory write: `apply` with its
 /// arguments), run before triangle `before` of its batch (or after the last, where
@@ -84,18 +86,21 @@ struct ChipWrite<C> {
 }
 
 /// What the render thread runs, in order: the triangles, with the chip writes between
-/// them (two lists, so that a write, a few words, is not stored as a triangle's
-/// hundreds of bytes).
-struct Batch<C> {
-    triangles: Vec<TriangleJob<C>>,
+/// them and the chip states of those that have one (three lists, so that a write, a
+/// few words, is not stored as a triangle's hundreds of bytes, nor a chip state in the
+/// triangles that have none).
+struct Batch<C, X> {
+    triangles: Vec<TriangleJob<C, X>>,
     writes: Vec<ChipWrite<C>>,
+    chip_states: Vec<X>,
 }
 
-impl<C> Batch<C> {
+impl<C, X> Batch<C, X> {
     fn new() -> Self {
         Self {
             triangles: Vec::with_capacity(BATCH),
             writes: Vec::new(),
+            chip_states: Vec::new(),
         }
     }
 
@@ -106,19 +111,23 @@ impl<C> Batch<C> {
     fn clear(&mut self) {
         self.triangles.clear();
         self.writes.clear();
+        self.chip_states.clear();
     }
 
     /// Run the batch on `twin` and `chips`, in order, each triangle's walk counts onto
     /// `counts`.
     fn run(&self, twin: &mut Fbi, chips: &mut C, counts: &mut Vec<WalkCounts>) {
         let mut writes = self.writes.iter().peekable();
+        let mut chip_states = &self.chip_states[..];
         for (i, job) in self.triangles.iter().enumerate() {
             while let Some(w) = writes.next_if(|w| w.before as usize == i) {
                 (w.apply)(chips, w.args);
             }
             twin.params = job.params;
             let before = (twin.stats.pixels_in, twin.stats.spans);
-            (job.draw)(twin, chips, &job.st, job.tex_adjust);
+            let (states, rest) = chip_states.split_at(usize::from(job.chip_states));
+            chip_states = rest;
+            (job.draw)(twin, chips, &job.st, states);
             counts.push(WalkCounts {
                 pixels: twin.stats.pixels_in.wrapping_sub(before.0),
                 spans: twin.stats.spans.wrapping_sub(before.1),
@@ -163,9 +172,9 @@ struct Returned<C> {
     panicked: bool,
 }
 
-enum Message<C> {
+enum Message<C, X> {
     Lend(Box<Lent<C>>),
-    Jobs(Batch<C>),
+    Jobs(Batch<C, X>),
     Settle,
 }
 
@@ -181,20 +190,21 @@ pub enum RenderThreadFailed {
 }
 
 /// The render thread and the calling thread's end of its channels; `C`, the chips the
-/// texel source is made of, lent with the memory.
-pub struct RenderThread<C: Send + 'static> {
-    to: Option<SyncSender<Message<C>>>,
+/// texel source is made of, lent with the memory; `X`, what each triangle's job carries
+/// for them.
+pub struct RenderThread<C: Send + 'static, X: Send + 'static> {
+    to: Option<SyncSender<Message<C, X>>>,
     back: Receiver<Returned<C>>,
     /// Emptied batches coming back to be filled again (no allocation per batch).
-    spent: Receiver<Batch<C>>,
+    spent: Receiver<Batch<C, X>>,
     /// Each batch's walk counts, in order, once it is shaded.
     counted: Receiver<Vec<WalkCounts>>,
-    batch: Batch<C>,
+    batch: Batch<C, X>,
     lent: bool,
     thread: Option<JoinHandle<()>>,
 }
 
-impl<C: Send + Default + 'static> RenderThread<C> {
+impl<C: Send + Default + 'static, X: Send + 'static> RenderThread<C, X> {
     /// A render thread, or `None` where one cannot be started.
     pub fn start() -> Option<Self> {
         let (to, from) = mpsc::sync_channel(IN_FLIGHT);
@@ -231,8 +241,9 @@ impl<C: Send + Default + 'static> RenderThread<C> {
         self.counted.try_recv().ok()
     }
 
-    /// Queue `job`, lending `fbi`'s memory and `chips` first if the render thread does
-    /// not hold them (`chips` is left empty until [`RenderThread::settle`]); `true` when
+    /// Queue `job` with its chip states (see [`DrawJob`]), lending `fbi`'s memory and
+    /// `chips` first if the render thread does not hold them (`chips` is left empty
+    /// until [`RenderThread::settle`]); `true` when
     /// a batch went to the render thread (the time to collect what is
     /// [`RenderThread::counted`]). An error only where the render thread is gone (a
     /// bug; see [`RenderThread::settle`]).
@@ -240,8 +251,12 @@ impl<C: Send + Default + 'static> RenderThread<C> {
         &mut self,
         fbi: &mut Fbi,
         chips: &mut C,
-        job: TriangleJob<C>,
-    ) -> Result<bool, RenderThreadFailed> {
+        mut job: TriangleJob<C, X>,
+        chip_states: &[X],
+    ) -> Result<bool, RenderThreadFailed>
+    where
+        X: Copy,
+    {
         if !self.lent {
             let lent = Box::new(Lent {
                 fbi: fbi.lend(),
@@ -249,6 +264,12 @@ impl<C: Send + Default + 'static> RenderThread<C> {
             });
             self.lent = true;
             self.send(Message::Lend(lent))?;
+        }
+        if !chip_states.is_empty() {
+            // At most 255 (the board's: at most 3).
+            let chip_states = &chip_states[..chip_states.len().min(usize::from(u8::MAX))];
+            job.chip_states = chip_states.len() as u8;
+            self.batch.chip_states.extend_from_slice(chip_states);
         }
         self.batch.triangles.push(job);
         if self.batch.triangles.len() == BATCH {
@@ -309,7 +330,7 @@ impl<C: Send + Default + 'static> RenderThread<C> {
         self.send(Message::Jobs(full))
     }
 
-    fn send(&self, message: Message<C>) -> Result<(), RenderThreadFailed> {
+    fn send(&self, message: Message<C, X>) -> Result<(), RenderThreadFailed> {
         match self.to.as_ref().map(|to| to.send(message)) {
             Some(Ok(())) => Ok(()),
             _ => Err(RenderThreadFailed::Stopped),
@@ -317,7 +338,7 @@ impl<C: Send + Default + 'static> RenderThread<C> {
     }
 }
 
-impl<C: Send + 'static> Drop for RenderThread<C> {
+impl<C: Send + 'static, X: Send + 'static> Drop for RenderThread<C, X> {
     fn drop(&mut self) {
         // Closing the channel ends the thread (after the batch it is shading).
         self.to = None;
@@ -348,10 +369,10 @@ fn receive<T>(from: &Receiver<T>, spin: Duration) -> Option<T> {
 }
 
 /// The render thread: shades the jobs in order on its twin FBI while it holds the memory.
-fn serve<C: Default>(
-    from: Receiver<Message<C>>,
+fn serve<C: Default, X>(
+    from: Receiver<Message<C, X>>,
     give: SyncSender<Returned<C>>,
-    spend: SyncSender<Batch<C>>,
+    spend: SyncSender<Batch<C, X>>,
     count: Sender<Vec<WalkCounts>>,
 ) {
     let mut twin: Option<Fbi> = None;
@@ -416,12 +437,7 @@ fn serve<C: Default>(
 
 /// An untextured triangle's walk: counted and shaded as [`Fbi::draw_triangle`] does with
 /// the span kernels and no texture.
-pub fn draw_untextured<M: PixelModel, C>(
-    twin: &mut Fbi,
-    _: &mut C,
-    st: &DrawState,
-    _: Option<(i32, i32)>,
-) {
+pub fn draw_untextured<M: PixelModel, C, X>(twin: &mut Fbi, _: &mut C, st: &DrawState, _: &[X]) {
     twin.shade_job::<M, _>(st, &mut NoTexture);
 }
 
@@ -445,19 +461,17 @@ impl Fbi {
 
     /// The job of the triangle in the parameter registers (the `triangleCMD` command,
     /// after the FBI's subpixel correction) into colour buffer `dest`
-    /// ([`Fbi::deferrable`]), drawn by `draw` (for example [`draw_untextured`]) with
-    /// `tex_adjust` (see [`TriangleJob`]).
-    pub fn triangle_job<M: PixelModel, C>(
+    /// ([`Fbi::deferrable`]), drawn by `draw` (for example [`draw_untextured`]).
+    pub fn triangle_job<M: PixelModel, C, X>(
         &self,
         dest: usize,
-        draw: DrawJob<C>,
-        tex_adjust: Option<(i32, i32)>,
-    ) -> TriangleJob<C> {
+        draw: DrawJob<C, X>,
+    ) -> TriangleJob<C, X> {
         TriangleJob {
             st: DrawState::capture::<M>(self, dest),
             params: self.params,
             draw,
-            tex_adjust,
+            chip_states: 0,
         }
     }
 

@@ -32,6 +32,7 @@ mod lod;
 mod sample;
 mod span;
 mod state;
+mod stw;
 
 pub use approx::Approx;
 use cache::TexelCache;
@@ -45,6 +46,7 @@ pub use span::{
 use sst1_ncc::{NccRegs, NccWrite, Rgb8};
 use sst1_regs::{addr, Rgba, TextureMode};
 pub use state::{StateMismatch, TmuState};
+pub use stw::{StwParams, StwPending, StwWrite};
 
 /// Signed fixed point with 14 integer and 18 fraction bits (`startS`, `dSdX`, ...).
 pub type Fx14_18 = i32;
@@ -445,12 +447,8 @@ pub struct Tmu {
     ncc_stale: bool,
     /// The 8-bit palette.
     palette: [Rgb8; 256],
-    /// Start S, T, W at vertex A (.32 fixed point).
-    start: [Fx32; 3],
-    /// dS/dX, dT/dX, dW/dX (.32).
-    ddx: [Fx32; 3],
-    /// dS/dY, dT/dY, dW/dY (.32).
-    ddy: [Fx32; 3],
+    /// The S, T, W start values and gradients.
+    stw: StwParams,
     /// Memory layout of the current texture.
     layout: Layout,
     /// Combine unit configuration from `textureMode`.
@@ -481,12 +479,6 @@ pub struct Tmu {
     approx: Approx,
 }
 
-/// Converts an IEEE single to fixed point with 32 fraction bits, truncating towards zero
-/// ([`sst1_regs::float::float_to_fixed64`], the FBI's converter).
-fn float_to_fx32(data: u32) -> Fx32 {
-    sst1_regs::float::float_to_fixed64(data, 32)
-}
-
 impl Tmu {
     /// A TMU with `mem_bytes` of texture memory (1, 2 or 4 MiB; other sizes are rounded up
     /// to a power of two within 1..=4 MiB). `index` is 0..=2.
@@ -507,9 +499,7 @@ impl Tmu {
             ncc: [[[0; 3]; 256]; 2],
             ncc_stale: false,
             palette: [[0; 3]; 256],
-            start: [0; 3],
-            ddx: [0; 3],
-            ddy: [0; 3],
+            stw: StwParams::default(),
             layout: Layout::new(0, 0, &[0; 4], ram_mask),
             combine: TextureCombine::from_texture_mode(0),
             lod_base: 0,
@@ -610,30 +600,10 @@ impl Tmu {
     pub fn write_reg(&mut self, offset: u32, value: u32) {
         self.box86_return();
         let offset = offset & 0x3fc;
-        let fixed_st = |v: u32| Fx32::from(v as i32) << 14;
-        let fixed_w = |v: u32| Fx32::from(v as i32) << 2;
+        if self.stw.write(offset, value) {
+            return;
+        }
         match offset {
-            addr::START_S | addr::START_T => {
-                self.start[((offset - addr::START_S) / 4) as usize] = fixed_st(value)
-            }
-            addr::START_W => self.start[2] = fixed_w(value),
-            addr::D_S_DX | addr::D_T_DX => {
-                self.ddx[((offset - addr::D_S_DX) / 4) as usize] = fixed_st(value)
-            }
-            addr::D_W_DX => self.ddx[2] = fixed_w(value),
-            addr::D_S_DY | addr::D_T_DY => {
-                self.ddy[((offset - addr::D_S_DY) / 4) as usize] = fixed_st(value)
-            }
-            addr::D_W_DY => self.ddy[2] = fixed_w(value),
-            addr::F_START_S..=addr::F_START_W => {
-                self.start[((offset - addr::F_START_S) / 4) as usize] = float_to_fx32(value)
-            }
-            addr::F_D_S_DX..=addr::F_D_W_DX => {
-                self.ddx[((offset - addr::F_D_S_DX) / 4) as usize] = float_to_fx32(value)
-            }
-            addr::F_D_S_DY..=addr::F_D_W_DY => {
-                self.ddy[((offset - addr::F_D_S_DY) / 4) as usize] = float_to_fx32(value)
-            }
             addr::TEXTURE_MODE..=addr::TREX_INIT1 => {
                 match offset {
                     addr::TEXTURE_MODE => self.texture_mode = value,
@@ -673,32 +643,49 @@ impl Tmu {
         if profile.texture_cache == TextureCacheKey::Box86 {
             self.box86_bind();
         }
-        let g = [self.ddx[0], self.ddy[0], self.ddx[1], self.ddy[1]];
+        let g = [
+            self.stw.rows[stw::DX][0],
+            self.stw.rows[stw::DY][0],
+            self.stw.rows[stw::DX][1],
+            self.stw.rows[stw::DY][1],
+        ];
         self.lod_base = lod::lod_base(profile.lod, g, self.t_lod);
     }
 
-    /// Subpixel correction of the S/T/W start registers (`fbzColorPath` bit 26):
-    /// `start += (dx * dXdx + dy * dXdy) >> 4`, with the FBI's 12.4 offsets. The corrected
-    /// values replace the start registers, so a triangle that does not resend them is
-    /// corrected again (spec 9.4). Source: MAME and 86Box apply it at 32 fraction bits.
+    /// Subpixel correction of the S/T/W start registers ([`StwParams::subpixel_adjust`]).
     pub fn subpixel_adjust(&mut self, dx_12_4: i32, dy_12_4: i32) {
-        for i in 0..3 {
-            let delta = i64::from(dx_12_4)
-                .wrapping_mul(self.ddx[i])
-                .wrapping_add(i64::from(dy_12_4).wrapping_mul(self.ddy[i]));
-            self.start[i] = self.start[i].wrapping_add(delta >> 4);
-        }
+        self.stw.subpixel_adjust(dx_12_4, dy_12_4);
     }
 
     /// The S, T, W start registers (.32 fixed point), e.g. to undo a subpixel correction
     /// that lasts one triangle ([`Tmu::restore_start_registers`]).
     pub fn start_registers(&self) -> [i64; 3] {
-        self.start
+        self.stw.rows[stw::START]
     }
 
     /// Sets the S, T, W start registers back to values [`Tmu::start_registers`] returned.
     pub fn restore_start_registers(&mut self, start: [i64; 3]) {
-        self.start = start;
+        self.stw.rows[stw::START] = start;
+    }
+
+    /// An S, T, W register write ([`StwParams::decode`]): what [`Tmu::write_reg`] does
+    /// with it, decoded once for every TMU it goes to.
+    #[inline]
+    pub fn write_stw(&mut self, w: StwWrite) {
+        self.box86_return();
+        self.stw.apply(w);
+    }
+
+    /// The S, T, W register writes `pending`, as [`Tmu::write_reg`] one by one would
+    /// have done them: a board that lends this TMU to a render thread notes them on the
+    /// calling thread and sends them with each textured triangle.
+    #[inline]
+    pub fn apply_stw(&mut self, pending: &StwPending) {
+        if !pending.is_empty() {
+            // What every register write does first (`write_reg`).
+            self.box86_return();
+            pending.apply_to(&mut self.stw);
+        }
     }
 
     /// The TMU's output for one pixel.
@@ -844,9 +831,7 @@ impl Tmu {
     /// `start + dx * d/dx + dy * d/dy`, wrapping as the 64-bit references do.
     #[inline(always)]
     fn iterated(&self, i: usize, dx: i32, dy: i32) -> Fx32 {
-        self.start[i]
-            .wrapping_add(i64::from(dx).wrapping_mul(self.ddx[i]))
-            .wrapping_add(i64::from(dy).wrapping_mul(self.ddy[i]))
+        self.stw.iterated(i, dx, dy)
     }
 
     /// Recomputes what depends on the texture registers.

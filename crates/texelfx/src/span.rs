@@ -510,7 +510,7 @@ impl Tmu {
         for (k, lanes) in [&mut c.s, &mut c.t, &mut c.w].into_iter().enumerate() {
             match place {
                 LanePlace::Row { dx0, dy, .. } => {
-                    let (v0, d) = (self.iterated(k, dx0, dy), self.ddx[k]);
+                    let (v0, d) = (self.iterated(k, dx0, dy), self.stw.rows[crate::stw::DX][k]);
                     for (i, v) in lanes[..n].iter_mut().enumerate() {
                         *v = v0.wrapping_add((i as i64).wrapping_mul(d));
                     }

@@ -128,9 +128,9 @@ impl Tmu {
             ncc: rgb_bytes(self.ncc.as_flattened()),
             ncc_stale: self.ncc_stale,
             palette: rgb_bytes(&self.palette),
-            start: self.start,
-            ddx: self.ddx,
-            ddy: self.ddy,
+            start: self.stw.rows[crate::stw::START],
+            ddx: self.stw.rows[crate::stw::DX],
+            ddy: self.stw.rows[crate::stw::DY],
             lod_base: self.lod_base,
             box86,
             box86_next: self.box86.next_victim as u32,
@@ -207,9 +207,9 @@ impl Tmu {
         for (entry, rgb) in self.palette.iter_mut().zip(state.palette.chunks_exact(3)) {
             *entry = [rgb[0], rgb[1], rgb[2]];
         }
-        self.start = state.start;
-        self.ddx = state.ddx;
-        self.ddy = state.ddy;
+        self.stw.rows[crate::stw::START] = state.start;
+        self.stw.rows[crate::stw::DX] = state.ddx;
+        self.stw.rows[crate::stw::DY] = state.ddy;
         self.lod_base = state.lod_base;
         // The layout, combine unit and decode table from the registers and tables.
         self.refresh();

@@ -526,10 +526,10 @@ fn subpixel_adjust_writes_back() {
     tmu.write_reg(addr::D_W_DX, (1 << 26) as u32);
     // dx = 0.5, dy = 0.25 (12.4)
     tmu.subpixel_adjust(8, 4);
-    assert_eq!(tmu.start[0], 1 << 32);
-    assert_eq!(tmu.start[2], (1 << 32) + (1 << 27));
+    assert_eq!(tmu.stw.rows[crate::stw::START][0], 1 << 32);
+    assert_eq!(tmu.stw.rows[crate::stw::START][2], (1 << 32) + (1 << 27));
     tmu.subpixel_adjust(8, 4);
-    assert_eq!(tmu.start[0], 2 << 32);
+    assert_eq!(tmu.stw.rows[crate::stw::START][0], 2 << 32);
 }
 
 #[test]
@@ -540,15 +540,15 @@ fn float_registers_keep_32_fraction_bits() {
     tmu.write_reg(addr::F_START_W, 0.0f32.to_bits());
     tmu.write_reg(addr::F_D_S_DX, (1.0f32 / 3.0).to_bits());
     tmu.write_reg(addr::F_D_W_DY, 2.0f32.to_bits());
-    assert_eq!(tmu.start, [3 << 31, -(1 << 30), 0]);
+    assert_eq!(tmu.stw.rows[crate::stw::START], [3 << 31, -(1 << 30), 0]);
     // 1/3 as a float is 0xaaaaab / 2^25: 0x5555_5580 in .32
-    assert_eq!(tmu.ddx[0], 0x5555_5580);
-    assert_eq!(tmu.ddy[2], 2 << 32);
+    assert_eq!(tmu.stw.rows[crate::stw::DX][0], 0x5555_5580);
+    assert_eq!(tmu.stw.rows[crate::stw::DY][2], 2 << 32);
     // the fixed registers: 14.18 and 2.30
     tmu.write_reg(addr::START_S, (-3i32 << 17) as u32);
     tmu.write_reg(addr::D_W_DX, (1 << 29) as u32);
-    assert_eq!(tmu.start[0], -3 << 31);
-    assert_eq!(tmu.ddx[2], 1 << 31);
+    assert_eq!(tmu.stw.rows[crate::stw::START][0], -3 << 31);
+    assert_eq!(tmu.stw.rows[crate::stw::DX][2], 1 << 31);
 }
 
 #[test]
