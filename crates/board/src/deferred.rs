@@ -7,7 +7,8 @@
 //! triangles are still being drawn. Inside the writes the board settles before whatever
 //! reads or writes what the render thread holds (`crates/board/src/bus.rs`). The render
 //! thread holds the TMUs with the memory: their register and texture writes are queued
-//! behind the triangles before them ([`tmu_register`], [`tmu_texture`]). The timing
+//! behind the triangles before them ([`tmu_register`], [`tmu_texture`]), but for the S,
+//! T, W registers, whose writes go with the next textured triangle ([`LentStw`]). The timing
 //! model charges the queued triangles with the counts of the walks that shaded them
 //! ([`TimingLog`]). [`Board::deferred`] borrows the board; [`Deferred::new`] owns one
 //! (libglide3's, for a whole Glide session).

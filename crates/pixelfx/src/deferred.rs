@@ -9,7 +9,9 @@
 //! profile, and the texel source's chips (`C`: the board lends its TMUs, whose register
 //! and texture writes then follow the triangles, [`RenderThread::push_chips`]). Each
 //! triangle goes over as a [`TriangleJob`], the drawing state and the parameters
-//! captured at its command; the render thread runs the jobs in order on an FBI of its
+//! captured at its command, with chip states of its own where its caller keeps some of
+//! the chips' registers (`X`, the board's: each TMU's S, T, W writes since its last
+//! textured triangle); the render thread runs the jobs in order on an FBI of its
 //! own (its twin, whose registers are never read). [`RenderThread::settle`] takes the
 //! memory and the chips back, with the counters the jobs added; the board settles
 //! before anything that reads or writes the frame buffer, the counters or the tables
@@ -18,9 +20,9 @@
 //! counter is what drawing each triangle at its command gives (the identity tests
 //! replay every trace with 1, 2 and 4 threads).
 //!
-//! Memory is bounded: jobs go in batches of at most [`BATCH`] triangles and
-//! [`BATCH_WRITES`] chip writes over a channel of [`IN_FLIGHT`] batches, and the calling
-//! thread waits while it is full.
+//! Memory is bounded: jobs go in batches of at most [`BATCH`] triangles (each with at
+//! most 255 chip states) and [`BATCH_WRITES`] chip writes over a channel of [`IN_FLIGHT`]
+//! batches, and the calling thread waits while it is full.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::mpsc::{self, Receiver, Sender, SyncSender, TryRecvError};
