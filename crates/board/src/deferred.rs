@@ -317,6 +317,7 @@ impl Board {
     fn render_failed(&mut self, e: pixelfx::RenderThreadFailed) {
         self.render = None;
         self.timing_log = TimingLog::default();
+        self.lent_stw = LentStw::new(self.config.tmus as usize);
         if !std::thread::panicking() {
             panic!("{e}");
         }

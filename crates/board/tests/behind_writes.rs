@@ -7,7 +7,8 @@
 //! with fog on, `nopCMD` clearing the counters, a counter read, a new buffer layout, a
 //! large triangle on the bands), and textured rounds on two TMUs change the TMUs between
 //! their triangles (random `textureMode`, `tLOD` and base per TMU, texture-memory and
-//! NCC-table writes into the bound texture, subpixel correction of S, T and W). Every
+//! NCC-table writes into the bound texture, subpixel correction of S, T and W, which are
+//! written to both TMUs, to each on its own or through the floating-point aliases). Every
 //! frame-buffer word, every value read, the counters and the modelled time must be
 //! identical, and the render thread must have taken most of the triangles.
 
@@ -49,13 +50,45 @@ fn triangle(rng: &mut Rng, out: &mut Vec<Access>, (x, y): (u32, u32), size: u32,
         addr::START_B,
         addr::START_A,
         addr::START_Z,
-        addr::START_S,
-        addr::START_T,
-        addr::START_W,
     ] {
         out.push(Access::Write(reg, rng.u32() & 0x00ff_ffff));
         out.push(Access::Write(reg + 0x20, rng.u32() & 0x1fff));
         out.push(Access::Write(reg + 0x40, rng.u32() & 0x1fff));
+    }
+    // S, T and W (which the calling thread keeps while the render thread holds the
+    // TMUs, `deferred::LentStw`): to every chip, or to each TMU on its own (chip bits 1
+    // and 2), or through the floating-point aliases (0x80 above), and some written
+    // twice, the second write the one that counts.
+    let form = rng.below(4);
+    for reg in [addr::START_S, addr::START_T, addr::START_W] {
+        for d in [0, 0x20, 0x40] {
+            let fixed = |rng: &mut Rng| {
+                if d == 0 {
+                    rng.u32() & 0x00ff_ffff
+                } else {
+                    rng.u32() & 0x1fff
+                }
+            };
+            match form {
+                0 => out.push(Access::Write(reg + d, fixed(rng))),
+                1 => {
+                    for chip in [2 << 10, 4 << 10] {
+                        out.push(Access::Write(chip | (reg + d), fixed(rng)));
+                    }
+                }
+                2 => {
+                    let v = rng.below(1 << 16) as f32 / if d == 0 { 64.0 } else { 4096.0 };
+                    out.push(Access::Write(reg + d + 0x80, v.to_bits()));
+                }
+                _ => {
+                    out.push(Access::Write(
+                        reg + d + 0x80,
+                        (rng.below(256) as f32).to_bits(),
+                    ));
+                    out.push(Access::Write(reg + d, fixed(rng)));
+                }
+            }
+        }
     }
     out.push(Access::Write(command, rng.u32() & 1 << 31));
 }
