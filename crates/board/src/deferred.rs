@@ -72,7 +72,7 @@ pub(crate) fn draw_textured<M: ChipModel>(
 /// What a textured triangle's job carries for one TMU ([`draw_textured`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct TmuJob {
-    /// The S, T, W register writes since the TMU's last triangle.
+    /// The S, T, W register writes since the TMU's last textured triangle.
     stw: StwPending,
     /// The subpixel correction's 12.4 offsets, if the triangle has one.
     adjust: Option<(i32, i32)>,
@@ -87,8 +87,9 @@ pub(crate) struct TmuJob {
 /// over when it takes the TMUs back ([`Board::settle`]).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct LentStw {
-    /// TMU `i`'s writes, for the `tmus` TMUs of the board.
+    /// TMU `i`'s writes since its last textured triangle's job.
     pending: [StwPending; 3],
+    /// The board's TMUs (1 to 3): how many jobs a textured triangle carries.
     tmus: usize,
 }
 
