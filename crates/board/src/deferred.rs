@@ -102,7 +102,7 @@ impl LentStw {
         }
     }
 
-    /// An S, T, W register write ([`StwParams::decode`]) to the TMUs of the chip mask
+    /// An S, T, W register write ([`texelfx::StwParams::decode`]) to the TMUs of the chip mask
     /// `chips` (bit 1 TMU 0, bit 2 TMU 1, bit 3 TMU 2).
     #[inline(always)]
     pub(crate) fn write(&mut self, chips: u32, w: StwWrite) {

@@ -13,7 +13,7 @@
 use crate::params::TriangleParams;
 use crate::setup::Span;
 
-/// [`EdgeRounding::Box86Fixed`]'s walk. Source: 86Box `voodoo_triangle` (slopes, row
+/// [`crate::setup::EdgeRounding::Box86Fixed`]'s walk. Source: 86Box `voodoo_triangle` (slopes, row
 /// range) and `voodoo_half_triangle` (crossings, `+ 0x7000`, the empty-row test).
 pub(crate) fn spans(p: &TriangleParams) -> impl Iterator<Item = Span> {
     let [ax, ay, bx, by, cx, cy] = [p.ax, p.ay, p.bx, p.by, p.cx, p.cy].map(i32::from);

@@ -18,7 +18,7 @@ use sst1_regs::{TLod, TextureMode};
 use crate::Tmu;
 
 impl Tmu {
-    /// [`TextureCacheKey::Box86`]: lends the cached decode of the bound texture to `cache`
+    /// [`crate::TextureCacheKey::Box86`]: lends the cached decode of the bound texture to `cache`
     /// for this triangle, decoding it first (every level, with the state in force) if no
     /// entry has its key. Source: 86Box `voodoo_use_texture`.
     pub(crate) fn box86_bind(&mut self) {

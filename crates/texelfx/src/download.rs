@@ -7,7 +7,7 @@
 //!
 //! (bits 22:21 select the TMU and are ignored here.) A 32-bit write carries two 16-bit
 //! texels (S, S+1) or four 8-bit texels (S..S+3), low bits first; for 8-bit texels with
-//! `seq_8_downld = 0`, S[1] is forced to 0. Texels that fall beyond the width of a narrow
+//! `seq_8_downld = 0`, S\[1\] is forced to 0. Texels that fall beyond the width of a narrow
 //! map (1xN for 16-bit; 1xN, 2xN for 8-bit) are not written. `tLOD` `tdata_swizzle` reverses
 //! the bytes of the word and `tdata_swap` then swaps its halves (spec 5.51). LODs above 8
 //! are ignored.

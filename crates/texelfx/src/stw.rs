@@ -95,7 +95,7 @@ impl StwParams {
     /// The map (spec 5): `startS`, `startT`, `startW` at 0x034, 0x038, 0x03c; the X
     /// gradients 0x20 above, the Y gradients 0x40 above; the floating-point aliases 0x80
     /// above each. So bits 4:2 are 5, 6, 7 for S, T, W, and bits 6:5 are 1, 2, 3 for the
-    /// start, d/dX and d/dY ([`WORDS`], one lookup).
+    /// start, d/dX and d/dY (one lookup in a table built from that rule).
     #[inline(always)]
     pub fn decode(offset: u32, value: u32) -> Option<StwWrite> {
         let word = ((offset & 0x3fc) >> 2) as usize;
