@@ -187,13 +187,11 @@ impl Board {
         if self.render_lent() {
             self.lent_tmu_register(chips, offset, value);
         } else if let Some(w) = texelfx::StwParams::decode(offset, value) {
-            // Decoded once; the TMUs the mask selects (bit 1 TMU 0, ...), one by one.
-            let mut mask = (chips >> 1) & 7;
-            while mask != 0 {
-                if let Some(tmu) = self.tmus.get_mut(mask.trailing_zeros() as usize) {
+            // Decoded once for every TMU the mask selects.
+            for i in deferred::selected_tmus(chips) {
+                if let Some(tmu) = self.tmus.get_mut(i) {
                     tmu.write_stw(w);
                 }
-                mask &= mask - 1;
             }
         } else {
             deferred::tmu_register(&mut self.tmus, [chips, offset, value]);

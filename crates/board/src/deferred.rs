@@ -30,11 +30,25 @@ use crate::Board;
 // `&mut Vec`: the render thread's chips are the board's `Vec<Tmu>` (`RenderThread<C>`).
 #[allow(clippy::ptr_arg)]
 pub(crate) fn tmu_register(tmus: &mut Vec<Tmu>, [chips, offset, value]: [u32; 3]) {
-    for (i, tmu) in tmus.iter_mut().enumerate() {
-        if chips & (2 << i) != 0 {
+    for i in selected_tmus(chips) {
+        if let Some(tmu) = tmus.get_mut(i) {
             tmu.write_reg(offset, value);
         }
     }
+}
+
+/// The TMUs a register write's chip mask selects (bit 1 TMU 0, bit 2 TMU 1, bit 3 TMU 2),
+/// in order, each once.
+#[inline(always)]
+pub(crate) fn selected_tmus(chips: u32) -> impl Iterator<Item = usize> {
+    let mut mask = (chips >> 1) & 7;
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let i = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            i
+        })
+    })
 }
 
 /// A texture-memory write, `[tmu, offset, value]` (`offset` from the texture region's
@@ -89,38 +103,25 @@ pub(crate) struct TmuJob {
 pub(crate) struct LentStw {
     /// TMU `i`'s writes since its last textured triangle's job.
     pending: [StwPending; 3],
-    /// The board's TMUs (1 to 3): how many jobs a textured triangle carries.
-    tmus: usize,
 }
 
 impl LentStw {
-    /// For a board of `tmus` TMUs.
-    pub(crate) fn new(tmus: usize) -> Self {
-        Self {
-            tmus: tmus.min(3),
-            ..Self::default()
-        }
-    }
-
     /// An S, T, W register write ([`texelfx::StwParams::decode`]) to the TMUs of the chip mask
     /// `chips` (bit 1 TMU 0, bit 2 TMU 1, bit 3 TMU 2).
     #[inline(always)]
     pub(crate) fn write(&mut self, chips: u32, w: StwWrite) {
-        let mut mask = (chips >> 1) & 7;
-        while mask != 0 {
-            self.pending[mask.trailing_zeros() as usize].note(w);
-            mask &= mask - 1;
+        for i in selected_tmus(chips) {
+            self.pending[i].note(w);
         }
     }
 
-    /// A textured triangle's jobs for the TMUs, with the subpixel correction `adjust`;
-    /// the writes so far go with them.
-    pub(crate) fn take_jobs(&mut self, adjust: Option<(i32, i32)>) -> ([TmuJob; 3], usize) {
-        let jobs = std::array::from_fn(|i| TmuJob {
+    /// A textured triangle's jobs for the TMUs (the first as many as the board has),
+    /// with the subpixel correction `adjust`; the writes so far go with them.
+    pub(crate) fn take_jobs(&mut self, adjust: Option<(i32, i32)>) -> [TmuJob; 3] {
+        std::array::from_fn(|i| TmuJob {
             stw: self.pending[i].take(),
             adjust,
-        });
-        (jobs, self.tmus)
+        })
     }
 
     /// Hand the writes so far over to `tmus`.
@@ -262,7 +263,8 @@ impl Board {
             return;
         };
         let pushed = if textured {
-            let (tmu_jobs, tmus) = self.lent_stw.take_jobs(tex_adjust);
+            let tmu_jobs = self.lent_stw.take_jobs(tex_adjust);
+            let tmus = (self.config.tmus as usize).min(tmu_jobs.len());
             render.push(&mut self.fbi, &mut self.tmus, job, &tmu_jobs[..tmus])
         } else {
             render.push(&mut self.fbi, &mut self.tmus, job, &[])
@@ -318,7 +320,7 @@ impl Board {
     fn render_failed(&mut self, e: pixelfx::RenderThreadFailed) {
         self.render = None;
         self.timing_log = TimingLog::default();
-        self.lent_stw = LentStw::new(self.config.tmus as usize);
+        self.lent_stw = LentStw::default();
         if !std::thread::panicking() {
             panic!("{e}");
         }

@@ -158,7 +158,7 @@ impl Board {
             dac: video::Dac::default(),
             timing_on: true,
             render: None,
-            lent_stw: deferred::LentStw::new(config.tmus as usize),
+            lent_stw: deferred::LentStw::default(),
             deferring: false,
             timing_log: deferred::TimingLog::default(),
         }

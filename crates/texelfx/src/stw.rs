@@ -194,8 +194,9 @@ impl StwPending {
     pub(crate) fn apply_to(&self, p: &mut StwParams) {
         let regs = p.rows.as_flattened_mut();
         if self.written == ALL && self.float == 0 {
-            // All nine in fixed point (as Glide's triangle routines write them): no
-            // branch per register.
+            // All nine in their fixed-point forms: no branch per register. (Writes
+            // through the float aliases, which this project's Glide front-end uses, take
+            // the loop below.)
             for (r, (reg, &v)) in regs.iter_mut().zip(&self.values).enumerate() {
                 *reg = Fx32::from(v as i32) << fixed_shift(r);
             }
